@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Build sable (installing what is missing) and run one scene.
+# Usage: contrib/run.sh [scene.prm]   (default: prm/quick_demo.prm)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+scene="${1:-$root/prm/quick_demo.prm}"
+"$root/contrib/setup.sh"
+cd "$root"
+exec "$root/build/sable" "$scene"

@@ -1,0 +1,20 @@
+#ifndef sable_qusgm_run_scene_h
+#define sable_qusgm_run_scene_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace sable::qusgm
+{
+  /// Declare every entry of a QuSGM parameter file (besides the common ones).
+  void
+  declare_parameters(dealii::ParameterHandler &prm);
+
+  /// Read, check and run the QuSGM scene in @p filename.
+  void
+  run_scene(const std::string &filename, MPI_Comm communicator);
+} // namespace sable::qusgm
+
+#endif
