@@ -1,0 +1,61 @@
+#ifndef sable_mpm_boundaries_boundary_conditions_h
+#define sable_mpm_boundaries_boundary_conditions_h
+
+#include <sable/mpm/grid.h>
+#include <sable/mpm/parameters.h>
+
+#include <map>
+#include <vector>
+
+namespace sable::mpm
+{
+  /**
+   * Grid boundary conditions applied to nodal velocities (SPEC Part A step 8):
+   * fixed, slip, Coulomb friction wall and prescribed-velocity wall, per
+   * boundary id. Walls are the grid's axis-aligned boundary faces; each
+   * condition is applied at the nodes of those faces with the face's
+   * outward normal. Free boundaries cost nothing.
+   */
+  template <int dim>
+  class BoundaryConditions
+  {
+  public:
+    BoundaryConditions(
+      const std::map<types::boundary_id, BoundaryParameters<dim>> &parameters);
+
+    /// Collect the constrained nodes of @p grid (after every grid setup).
+    void
+    setup(const Grid<dim> &grid);
+
+    /**
+     * Apply all conditions to the velocities (dim values per relevant node,
+     * node by node) at nodes with mass. Returns the power the walls put into
+     * the grid, sum m_i (v_new - v_old) . v_wall / dt for moving walls,
+     * times dt (the work of this step), summed over locally owned nodes.
+     */
+    double
+    apply(std::vector<double> &      velocity,
+          const std::vector<double> &mass,
+          const unsigned int         n_owned_nodes) const;
+
+    bool
+    empty() const
+    {
+      return constraints.empty();
+    }
+
+  private:
+    struct NodeConstraint
+    {
+      unsigned int  node;
+      unsigned int  direction; ///< axis of the wall normal
+      double        sign;      ///< +1: normal along +axis, -1: along -axis
+      types::boundary_id id;
+    };
+
+    std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
+    std::vector<NodeConstraint>                            constraints;
+  };
+} // namespace sable::mpm
+
+#endif

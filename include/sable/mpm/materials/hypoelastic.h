@@ -1,0 +1,27 @@
+#ifndef sable_mpm_materials_hypoelastic_h
+#define sable_mpm_materials_hypoelastic_h
+
+#include <sable/mpm/materials/material.h>
+
+namespace sable::mpm
+{
+  /// Linear hypoelasticity with the Jaumann stress rate; no history.
+  class Hypoelastic : public Material
+  {
+  public:
+    using Material::Material;
+
+    void
+    update_stress(const Tensor<2, 3> &   L,
+                  const Tensor<2, 3> &   F,
+                  const double           dt,
+                  SymmetricTensor<2, 3> &stress,
+                  double *               history) const override;
+
+    double
+    strain_energy_density(const SymmetricTensor<2, 3> &stress,
+                          const Tensor<2, 3> &         F) const override;
+  };
+} // namespace sable::mpm
+
+#endif

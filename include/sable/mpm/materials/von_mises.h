@@ -1,0 +1,44 @@
+#ifndef sable_mpm_materials_von_mises_h
+#define sable_mpm_materials_von_mises_h
+
+#include <sable/mpm/materials/material.h>
+
+namespace sable::mpm
+{
+  /**
+   * J2 (von Mises) plasticity with linear isotropic hardening, paper 000:
+   * hypoelastic Jaumann trial stress, then radial return to the yield
+   * surface sqrt(3/2 s:s) = sigma_y0 + H eps_p. The one history variable is
+   * the equivalent plastic strain eps_p.
+   */
+  class VonMises : public Material
+  {
+  public:
+    using Material::Material;
+
+    unsigned int
+    n_history() const override
+    {
+      return 1;
+    }
+
+    std::vector<std::string>
+    history_names() const override
+    {
+      return {"equivalent_plastic_strain"};
+    }
+
+    void
+    update_stress(const Tensor<2, 3> &   L,
+                  const Tensor<2, 3> &   F,
+                  const double           dt,
+                  SymmetricTensor<2, 3> &stress,
+                  double *               history) const override;
+
+    double
+    strain_energy_density(const SymmetricTensor<2, 3> &stress,
+                          const Tensor<2, 3> &         F) const override;
+  };
+} // namespace sable::mpm
+
+#endif

@@ -1,0 +1,167 @@
+#ifndef sable_mpm_parameters_h
+#define sable_mpm_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sable::mpm
+{
+  using namespace dealii;
+
+  /// Constitutive model and constants of one body.
+  struct MaterialParameters
+  {
+    /// "linear elastic" (hypoelastic, Jaumann rate), "neo-Hookean" or
+    /// "von Mises" (J2 plasticity with linear isotropic hardening).
+    std::string model         = "linear elastic";
+    double      density       = 1000.;
+    double      bulk_modulus  = 0.;
+    double      shear_modulus = 0.;
+    /// Initial yield stress and hardening modulus (von Mises only).
+    double yield_stress      = 0.;
+    double hardening_modulus = 0.;
+
+    /// Set both moduli from Young's modulus and Poisson's ratio.
+    void
+    set_young_poisson(const double young, const double poisson);
+  };
+
+  template <int dim>
+  struct BodyParameters
+  {
+    enum class Shape
+    {
+      disk, ///< a disk in 2D, a sphere in 3D
+      box
+    };
+    Shape        shape  = Shape::disk;
+    Point<dim>   center = {};
+    double       radius = 0.;
+    Point<dim>   lower_corner = {};
+    Point<dim>   upper_corner = {};
+    unsigned int particles_per_direction = 2;
+
+    MaterialParameters material;
+
+    Tensor<1, dim> velocity = {};
+    /// Rigid rotation about the body centre (2D uses only the z component).
+    Tensor<1, 3> angular_velocity = {};
+    /// Initialise σ = −p I with ∇p = ρ g, p = 0 at the body's top.
+    bool lithostatic_stress = false;
+
+    /// Axis-aligned bounding box of the shape.
+    std::pair<Point<dim>, Point<dim>>
+    bounding_box() const;
+    bool
+    contains(const Point<dim> &x) const;
+    /// The point of the shape lowest in the potential −g·x (where p = 0).
+    Point<dim>
+    top_point(const Tensor<1, dim> &gravity) const;
+  };
+
+  enum class BoundaryType
+  {
+    free,
+    fixed,
+    slip,
+    friction,
+    moving
+  };
+
+  template <int dim>
+  struct BoundaryParameters
+  {
+    BoundaryType   type     = BoundaryType::free;
+    double         friction = 0.;
+    Tensor<1, dim> velocity = {};
+  };
+
+  template <int dim>
+  struct GridParameters
+  {
+    Point<dim>                      lower_corner;
+    Point<dim>                      upper_corner;
+    std::vector<unsigned int>       subdivisions;
+    /// Boundary ids of the faces x−, x+, y−, y+ (z−, z+).
+    std::vector<types::boundary_id> face_ids;
+  };
+
+  enum class UpdateScheme
+  {
+    usl,
+    musl
+  };
+
+  template <int dim>
+  struct SimulatorParameters
+  {
+    double       end_time      = 1.;
+    unsigned int maximum_steps = 0; ///< 0: no limit
+    double       cfl           = 0.5;
+
+    UpdateScheme update_scheme = UpdateScheme::musl;
+    /// Fraction of PIC in the particle velocity update (0 = pure FLIP).
+    double pic_fraction = 0.;
+
+    Tensor<1, dim> gravity = {};
+
+    std::map<types::boundary_id, BoundaryParameters<dim>> boundaries;
+
+    /// Directory of all output; empty: write nothing.
+    std::string  output_directory    = "";
+    double       output_interval     = 0.; ///< particle VTU; 0 = off
+    unsigned int statistics_interval = 1;  ///< steps between CSV rows
+    unsigned int progress_interval   = 100;
+    bool         print_timings       = true;
+
+    /// Stop when kinetic + strain energy exceeds this factor times the
+    /// largest energy the scene could hold (see doc/user_guide.md).
+    double energy_growth_limit = 10.;
+    /// Allow particles to leave the grid (they are removed and counted).
+    bool allow_outflow = false;
+
+    std::vector<BodyParameters<dim>> bodies;
+  };
+
+  /// Declare every MPM entry (besides the common ones) for @p n_bodies bodies.
+  template <int dim>
+  void
+  declare_parameters(ParameterHandler &prm, const unsigned int n_bodies);
+
+  /// Everything an MPM parameter file describes.
+  template <int dim>
+  struct Scene
+  {
+    GridParameters<dim>      grid;
+    SimulatorParameters<dim> simulator;
+  };
+
+  /**
+   * Read and check the MPM scene in @p filename. Throws InputError naming
+   * the entry, value and allowed range for anything invalid.
+   */
+  template <int dim>
+  Scene<dim>
+  read_scene(const std::string &filename);
+
+  /**
+   * Check parameters that do not depend on the grid; throws InputError.
+   * Called by read_scene() and by the Simulator for embedded use.
+   */
+  template <int dim>
+  void
+  check_parameters(const SimulatorParameters<dim> &parameters);
+
+  /// Check one body's parameters; @p name prefixes the entries in messages.
+  template <int dim>
+  void
+  check_body(const BodyParameters<dim> &body, const std::string &name);
+} // namespace sable::mpm
+
+#endif

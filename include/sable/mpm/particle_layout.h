@@ -1,0 +1,57 @@
+#ifndef sable_mpm_particle_layout_h
+#define sable_mpm_particle_layout_h
+
+#include <string>
+#include <vector>
+
+namespace sable::mpm
+{
+  /**
+   * Where each quantity sits in a particle's property array. Offsets are
+   * fixed once the bodies (and so the materials) are known; history slots
+   * exist only if some body's material needs them.
+   *
+   *   mass | initial volume | body | velocity (dim) | F (dim x dim, row-major)
+   *   | stress (xx yy zz xy xz yz) | history (n_history)
+   */
+  template <int dim>
+  struct ParticleLayout
+  {
+    static constexpr unsigned int mass           = 0;
+    static constexpr unsigned int initial_volume = 1;
+    static constexpr unsigned int body           = 2;
+    static constexpr unsigned int velocity       = 3;
+    static constexpr unsigned int deformation    = velocity + dim;
+    static constexpr unsigned int stress         = deformation + dim * dim;
+    static constexpr unsigned int history        = stress + 6;
+
+    unsigned int n_history = 0;
+
+    unsigned int
+    n_properties() const
+    {
+      return history + n_history;
+    }
+
+    /// Output names; vector quantities repeat their name dim times.
+    std::vector<std::string>
+    names(const std::vector<std::string> &history_names) const
+    {
+      std::vector<std::string> result = {"mass", "initial_volume", "body"};
+      for (unsigned int d = 0; d < dim; ++d)
+        result.push_back("velocity");
+      const char *axes = "xyz";
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          result.push_back(std::string("F_") + axes[i] + axes[j]);
+      for (const char *s : {"xx", "yy", "zz", "xy", "xz", "yz"})
+        result.push_back(std::string("stress_") + s);
+      for (unsigned int h = 0; h < n_history; ++h)
+        result.push_back(h < history_names.size() ? history_names[h] :
+                                                    "history_" + std::to_string(h));
+      return result;
+    }
+  };
+} // namespace sable::mpm
+
+#endif

@@ -1,0 +1,177 @@
+#ifndef sable_mpm_simulator_h
+#define sable_mpm_simulator_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <sable/mpm/boundaries/boundary_conditions.h>
+#include <sable/mpm/grid.h>
+#include <sable/mpm/materials/material.h>
+#include <sable/mpm/parameters.h>
+#include <sable/mpm/particle_layout.h>
+#include <sable/mpm/postprocess/statistics.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sable::mpm
+{
+  using namespace dealii;
+
+  /**
+   * Explicit material point method on a deal.II background grid
+   * (SPEC Part A). The triangulation belongs to the caller: a scene file
+   * builds a box (run_scene), an embedding program hands in its own mesh of
+   * axis-aligned cells. Typical use:
+   *
+   *   Simulator<2> simulator(triangulation, parameters);
+   *   simulator.add_body(body);        // or parameters.bodies
+   *   simulator.run();                 // or initialize() + step() ...
+   *
+   * One step, with only what the scene enabled:
+   * particles_to_grid -> momentum update (+ gravity) -> boundary conditions
+   * -> grid_to_particles (FLIP/PIC velocity, position) -> stress update
+   * (USL; MUSL remaps momenta first) -> sort particles -> statistics/output.
+   */
+  template <int dim>
+  class Simulator
+  {
+  public:
+    Simulator(parallel::distributed::Triangulation<dim> &triangulation,
+              const SimulatorParameters<dim> &           parameters);
+    ~Simulator();
+
+    /// Add a body before initialize(); checked against the grid.
+    void
+    add_body(const BodyParameters<dim> &body);
+
+    /// Check the input, seed the particles, set up grid and output.
+    void
+    initialize();
+
+    /// Advance one time step.
+    void
+    step();
+
+    /// initialize() if needed, then step to the end time or step limit,
+    /// with progress lines, statistics and output.
+    void
+    run();
+
+    double
+    get_time() const
+    {
+      return time;
+    }
+
+    unsigned int
+    get_step_number() const
+    {
+      return step_number;
+    }
+
+    /// Length of the last step.
+    double
+    get_time_step() const
+    {
+      return time_step;
+    }
+
+    const Particles::ParticleHandler<dim> &
+    get_particle_handler() const
+    {
+      return *particle_handler;
+    }
+
+    const ParticleLayout<dim> &
+    get_particle_layout() const
+    {
+      return layout;
+    }
+
+    /// Energies, momentum and per-body centre of mass over all ranks.
+    Statistics<dim>
+    compute_statistics() const;
+
+    /// Total work done by moving walls so far.
+    double
+    get_boundary_work() const
+    {
+      return boundary_work;
+    }
+
+  private:
+    using NodalVector = LinearAlgebra::distributed::Vector<double>;
+
+    void
+    seed_body(const unsigned int body_index, types::particle_index &next_id);
+    double
+    compute_time_step() const;
+    /// Scatter mass, momentum and (if @p with_forces) internal forces.
+    void
+    particles_to_grid(const bool with_forces);
+    /// Nodal velocities before (old) and after (new) the momentum update.
+    void
+    update_grid_velocities(const bool with_forces);
+    /// USL: velocity, position, and stress in one pass over the particles.
+    void
+    grid_to_particles(const bool update_positions, const bool update_stresses);
+    void
+    update_stresses_from_grid();
+    void
+    sort_particles();
+    void
+    write_particles();
+    void
+    check_energy(const Statistics<dim> &statistics) const;
+    /// Stop all ranks if any flagged a problem at @p location.
+    void
+    report_failure(const bool         failed_here,
+                   const Point<dim> & location,
+                   const std::string &what) const;
+
+    parallel::distributed::Triangulation<dim> &triangulation;
+    SimulatorParameters<dim>                   parameters;
+    MPI_Comm                                   communicator;
+    ConditionalOStream                         pcout;
+    mutable TimerOutput                        timer;
+
+    Grid<dim>                                        grid;
+    BoundaryConditions<dim>                          boundary_conditions;
+    std::vector<std::unique_ptr<Material>>           materials;
+    std::vector<double>                              body_wave_speed;
+    ParticleLayout<dim>                              layout;
+    std::unique_ptr<Particles::ParticleHandler<dim>> particle_handler;
+
+    /// mass, momentum (dim), force (dim) per node, node by node
+    NodalVector         nodal_data;
+    std::vector<double> nodal_mass;
+    std::vector<double> old_velocity;
+    std::vector<double> new_velocity;
+    bool                has_gravity = false;
+
+    bool         initialized = false;
+    double       time        = 0;
+    double       time_step   = 0;
+    unsigned int step_number = 0;
+    double       max_signal_speed = 0;
+    double       boundary_work    = 0;
+    double       initial_energy   = 0;
+    double       initial_gravity_energy = 0;
+    double       energy_floor           = 0;
+
+    unsigned long long lost_particles = 0;
+    Point<dim>         lost_location;
+
+    std::unique_ptr<StatisticsFile<dim>>              statistics_file;
+    std::vector<std::pair<double, std::string>>       particle_files;
+    double                                            next_output_time = 0;
+    unsigned int                                      output_counter   = 0;
+  };
+} // namespace sable::mpm
+
+#endif

@@ -1,0 +1,119 @@
+#include <deal.II/base/geometry_info.h>
+
+#include <sable/mpm/boundaries/boundary_conditions.h>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace sable::mpm
+{
+  template <int dim>
+  BoundaryConditions<dim>::BoundaryConditions(
+    const std::map<types::boundary_id, BoundaryParameters<dim>> &parameters)
+    : parameters(parameters)
+  {}
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::setup(const Grid<dim> &grid)
+  {
+    constraints.clear();
+    std::vector<types::global_dof_index> face_dofs(
+      GeometryInfo<dim>::vertices_per_face);
+    for (const auto &cell : grid.get_dof_handler().active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int f : GeometryInfo<dim>::face_indices())
+          if (cell->at_boundary(f))
+            {
+              const auto it = parameters.find(cell->face(f)->boundary_id());
+              if (it == parameters.end() ||
+                  it->second.type == BoundaryType::free)
+                continue;
+              cell->face(f)->get_dof_indices(face_dofs);
+              for (const auto dof : face_dofs)
+                constraints.push_back({grid.local_index(dof),
+                                       f / 2,
+                                       f % 2 == 1 ? 1. : -1.,
+                                       it->first});
+            }
+    // each (node, wall) once, in the order of boundary ids so that corner
+    // nodes see their walls in a fixed order on every rank
+    const auto key = [](const NodeConstraint &c) {
+      return std::make_tuple(c.id, c.node, c.direction, c.sign);
+    };
+    std::sort(constraints.begin(),
+              constraints.end(),
+              [&](const auto &a, const auto &b) { return key(a) < key(b); });
+    constraints.erase(std::unique(constraints.begin(),
+                                  constraints.end(),
+                                  [&](const auto &a, const auto &b) {
+                                    return key(a) == key(b);
+                                  }),
+                      constraints.end());
+  }
+
+  template <int dim>
+  double
+  BoundaryConditions<dim>::apply(std::vector<double> &      velocity,
+                                 const std::vector<double> &mass,
+                                 const unsigned int         n_owned_nodes) const
+  {
+    double work = 0;
+    for (const NodeConstraint &c : constraints)
+      {
+        if (mass[c.node] <= 0.)
+          continue;
+        double *const                  v = &velocity[c.node * dim];
+        const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
+        switch (wall.type)
+          {
+            case BoundaryType::fixed:
+              for (unsigned int d = 0; d < dim; ++d)
+                v[d] = 0.;
+              break;
+            case BoundaryType::slip:
+              v[c.direction] = 0.;
+              break;
+            case BoundaryType::moving:
+              {
+                if (c.node < n_owned_nodes)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    work += mass[c.node] * (wall.velocity[d] - v[d]) *
+                            wall.velocity[d];
+                for (unsigned int d = 0; d < dim; ++d)
+                  v[d] = wall.velocity[d];
+                break;
+              }
+            case BoundaryType::friction:
+              {
+                // SPEC step 6 with the wall as the other body: act only
+                // while the node approaches the wall
+                const double approach = c.sign * v[c.direction];
+                if (approach <= 0.)
+                  break;
+                double tangential_norm2 = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (d != c.direction)
+                    tangential_norm2 += v[d] * v[d];
+                const double tangential = std::sqrt(tangential_norm2);
+                const double mu_eff =
+                  tangential > 0. ?
+                    std::min(wall.friction, tangential / approach) :
+                    0.;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (d != c.direction)
+                    v[d] -= approach * mu_eff * v[d] / tangential;
+                v[c.direction] = 0.;
+                break;
+              }
+            case BoundaryType::free:
+              break;
+          }
+      }
+    return work;
+  }
+
+  template class BoundaryConditions<2>;
+  template class BoundaryConditions<3>;
+} // namespace sable::mpm

@@ -1,0 +1,573 @@
+#include <deal.II/base/utilities.h>
+
+#include <sable/base/common_parameters.h>
+#include <sable/base/input_error.h>
+#include <sable/mpm/parameters.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace sable::mpm
+{
+  namespace
+  {
+    std::string
+    zeros(const unsigned int n)
+    {
+      std::string s = "0";
+      for (unsigned int i = 1; i < n; ++i)
+        s += ", 0";
+      return s;
+    }
+
+    template <int dim>
+    Tensor<1, dim>
+    read_vector(const ParameterHandler &prm,
+                const std::string &     entry,
+                const std::string &     path)
+    {
+      const std::vector<double> values =
+        Utilities::string_to_double(Utilities::split_string_list(prm.get(entry)));
+      check_input(values.size() == dim,
+                  path + entry,
+                  prm.get(entry),
+                  std::to_string(dim) + " comma-separated numbers");
+      Tensor<1, dim> result;
+      for (unsigned int d = 0; d < dim; ++d)
+        result[d] = values[d];
+      return result;
+    }
+
+    /// "1: a, 2: b" -> {{"1", "a"}, {"2", "b"}}
+    std::vector<std::pair<std::string, std::string>>
+    split_map(const std::string &text)
+    {
+      std::vector<std::pair<std::string, std::string>> result;
+      for (const std::string &item : Utilities::split_string_list(text, ','))
+        {
+          const auto pair = Utilities::split_string_list(item, ':');
+          if (pair.size() == 2)
+            result.emplace_back(pair[0], pair[1]);
+        }
+      return result;
+    }
+
+    const char *material_models = "linear elastic|neo-Hookean|von Mises";
+
+    void
+    declare_material(ParameterHandler &prm)
+    {
+      prm.declare_entry("Material",
+                        "linear elastic",
+                        Patterns::Selection(material_models),
+                        "Constitutive model: linear elastic (hypoelastic, "
+                        "Jaumann rate), neo-Hookean (compressible) or von "
+                        "Mises (J2 plasticity, linear isotropic hardening).");
+      prm.declare_entry("Density", "1000", Patterns::Double(), "kg/m^3, > 0.");
+      prm.declare_entry("Young's modulus",
+                        "0",
+                        Patterns::Double(),
+                        "Pa. Give either Young's modulus and Poisson's ratio "
+                        "or Bulk modulus and Shear modulus.");
+      prm.declare_entry("Poisson's ratio",
+                        "0.3",
+                        Patterns::Double(),
+                        "In (-1, 0.5); used with Young's modulus.");
+      prm.declare_entry("Bulk modulus", "0", Patterns::Double(), "Pa.");
+      prm.declare_entry("Shear modulus", "0", Patterns::Double(), "Pa.");
+      prm.declare_entry("Yield stress",
+                        "0",
+                        Patterns::Double(),
+                        "Initial von Mises yield stress, Pa (von Mises only).");
+      prm.declare_entry("Hardening modulus",
+                        "0",
+                        Patterns::Double(),
+                        "Linear isotropic hardening modulus H, Pa: "
+                        "sigma_y = sigma_y0 + H * equivalent plastic strain.");
+    }
+
+    MaterialParameters
+    parse_material(const ParameterHandler &prm, const std::string &path)
+    {
+      MaterialParameters m;
+      m.model   = prm.get("Material");
+      m.density = prm.get_double("Density");
+      check_input(m.density > 0,
+                  path + "Density",
+                  m.density,
+                  "a number > 0 (kg/m^3)");
+      const double young   = prm.get_double("Young's modulus");
+      const double poisson = prm.get_double("Poisson's ratio");
+      const double bulk    = prm.get_double("Bulk modulus");
+      const double shear   = prm.get_double("Shear modulus");
+      if (bulk != 0. || shear != 0.)
+        {
+          check_input(young == 0.,
+                      path + "Young's modulus",
+                      young,
+                      "0 (unset) when Bulk and Shear modulus are given");
+          check_input(bulk > 0,
+                      path + "Bulk modulus",
+                      bulk,
+                      "a number > 0 (Pa)");
+          check_input(shear > 0,
+                      path + "Shear modulus",
+                      shear,
+                      "a number > 0 (Pa)");
+          m.bulk_modulus  = bulk;
+          m.shear_modulus = shear;
+        }
+      else
+        {
+          check_input(young > 0,
+                      path + "Young's modulus",
+                      young,
+                      "a number > 0 (Pa), or give Bulk and Shear modulus");
+          check_input(poisson > -1. && poisson < 0.5,
+                      path + "Poisson's ratio",
+                      poisson,
+                      "the open interval (-1, 0.5)");
+          m.set_young_poisson(young, poisson);
+        }
+      m.yield_stress      = prm.get_double("Yield stress");
+      m.hardening_modulus = prm.get_double("Hardening modulus");
+      if (m.model == "von Mises")
+        {
+          check_input(m.yield_stress > 0,
+                      path + "Yield stress",
+                      m.yield_stress,
+                      "a number > 0 (Pa) for the von Mises material");
+          check_input(m.hardening_modulus >= 0,
+                      path + "Hardening modulus",
+                      m.hardening_modulus,
+                      "a number >= 0 (Pa)");
+        }
+      return m;
+    }
+  } // namespace
+
+  void
+  MaterialParameters::set_young_poisson(const double young,
+                                        const double poisson)
+  {
+    bulk_modulus  = young / (3. * (1. - 2. * poisson));
+    shear_modulus = young / (2. * (1. + poisson));
+  }
+
+  template <int dim>
+  std::pair<Point<dim>, Point<dim>>
+  BodyParameters<dim>::bounding_box() const
+  {
+    if (shape == Shape::box)
+      return {lower_corner, upper_corner};
+    Point<dim> lo = center, hi = center;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] -= radius;
+        hi[d] += radius;
+      }
+    return {lo, hi};
+  }
+
+  template <int dim>
+  bool
+  BodyParameters<dim>::contains(const Point<dim> &x) const
+  {
+    if (shape == Shape::disk)
+      return (x - center).norm_square() <= radius * radius;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
+        return false;
+    return true;
+  }
+
+  template <int dim>
+  Point<dim>
+  BodyParameters<dim>::top_point(const Tensor<1, dim> &gravity) const
+  {
+    if (shape == Shape::disk)
+      {
+        const double g = gravity.norm();
+        return g > 0 ? center - radius * gravity / g : center;
+      }
+    Point<dim> top;
+    for (unsigned int d = 0; d < dim; ++d)
+      top[d] = gravity[d] > 0 ? lower_corner[d] : upper_corner[d];
+    return top;
+  }
+
+  template <int dim>
+  void
+  declare_parameters(ParameterHandler &prm, const unsigned int n_bodies)
+  {
+    const std::string zero = zeros(dim);
+    prm.declare_entry("Output directory",
+                      "output/scene",
+                      Patterns::Anything(),
+                      "Directory for all output of the run; created after "
+                      "the parameters are checked.");
+    prm.declare_entry("Number of bodies",
+                      "1",
+                      Patterns::Integer(1, 1000000),
+                      "Bodies are described in subsections 'Body 0', "
+                      "'Body 1', ...");
+    prm.declare_entry("Gravity",
+                      zero,
+                      Patterns::List(Patterns::Double(), dim, dim),
+                      "Gravitational acceleration vector, m/s^2. A zero "
+                      "vector costs no work.");
+
+    prm.enter_subsection("Time");
+    prm.declare_entry("End time", "1", Patterns::Double(), "s, > 0.");
+    prm.declare_entry("Maximum number of steps",
+                      "0",
+                      Patterns::Integer(0),
+                      "Stop after this many steps (0: no limit).");
+    prm.declare_entry("CFL number",
+                      "0.5",
+                      Patterns::Double(),
+                      "C in (0, 1]: dt = C h_min / max_p(c_p + |v_p|).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Solver");
+    prm.declare_entry("Update scheme",
+                      "MUSL",
+                      Patterns::Selection("USL|MUSL"),
+                      "USL updates stresses with the grid velocities of the "
+                      "momentum update; MUSL first maps the updated particle "
+                      "momenta back to the grid. USL is unstable at nodes "
+                      "with little mass unless the CFL number is small (about "
+                      "0.02 for a body crossing cells); MUSL is not.");
+    prm.declare_entry("PIC fraction",
+                      "0",
+                      Patterns::Double(),
+                      "Blend of PIC into the FLIP velocity update, in [0, 1] "
+                      "(0: pure FLIP, 1: pure PIC).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Grid");
+    prm.declare_entry("Lower corner",
+                      zero,
+                      Patterns::List(Patterns::Double(), dim, dim),
+                      "Lower corner of the box-shaped background grid, m.");
+    prm.declare_entry("Upper corner",
+                      dim == 2 ? "1, 1" : "1, 1, 1",
+                      Patterns::List(Patterns::Double(), dim, dim),
+                      "Upper corner of the background grid, m.");
+    prm.declare_entry("Subdivisions",
+                      dim == 2 ? "10, 10" : "10, 10, 10",
+                      Patterns::List(Patterns::Integer(1), dim, dim),
+                      "Number of cells in each direction.");
+    prm.declare_entry("Boundary ids",
+                      dim == 2 ? "0, 1, 2, 3" : "0, 1, 2, 3, 4, 5",
+                      Patterns::List(Patterns::Integer(0, 255),
+                                     2 * dim,
+                                     2 * dim),
+                      "Boundary id of the faces x-, x+, y-, y+ (, z-, z+).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry("Types",
+                      "",
+                      Patterns::Map(Patterns::Integer(0, 255),
+                                    Patterns::Selection(
+                                      "free|fixed|slip|friction|moving")),
+                      "Condition per boundary id, e.g. '0: slip, 2: "
+                      "friction'. Ids not listed are free.");
+    prm.declare_entry("Friction coefficients",
+                      "",
+                      Patterns::Map(Patterns::Integer(0, 255),
+                                    Patterns::Double()),
+                      "Coulomb coefficient per friction boundary, e.g. "
+                      "'2: 0.3'.");
+    prm.declare_entry("Wall velocities",
+                      "",
+                      Patterns::Map(Patterns::Integer(0, 255),
+                                    Patterns::List(Patterns::Double(),
+                                                   dim,
+                                                   dim,
+                                                   ";")),
+                      "Velocity per moving boundary, components separated "
+                      "by ';', e.g. '3: 0.1; 0'.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("Particle output interval",
+                      "0",
+                      Patterns::Double(0),
+                      "Simulated time between particle VTU files, s "
+                      "(0: no particle output).");
+    prm.declare_entry("Statistics interval",
+                      "1",
+                      Patterns::Integer(1),
+                      "Steps between rows of statistics.csv.");
+    prm.declare_entry("Progress interval",
+                      "100",
+                      Patterns::Integer(1),
+                      "Steps between progress lines on the console.");
+    prm.declare_entry("Energy growth limit",
+                      "10",
+                      Patterns::Double(),
+                      "Stop the run when kinetic + strain energy exceeds this "
+                      "factor (> 1) times the energy the scene can hold: the "
+                      "initial energy plus the work of gravity and walls.");
+    prm.declare_entry("Allow outflow",
+                      "false",
+                      Patterns::Bool(),
+                      "Whether particles may leave the grid (they are removed "
+                      "and counted); otherwise leaving stops the run.");
+    prm.leave_subsection();
+
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        prm.enter_subsection("Body " + std::to_string(b));
+        prm.declare_entry("Shape",
+                          "disk",
+                          Patterns::Selection("disk|sphere|box"),
+                          "disk (2D) or sphere (3D), or box.");
+        prm.declare_entry("Center", zero, Patterns::List(Patterns::Double(), dim, dim), "Disk/sphere centre, m.");
+        prm.declare_entry("Radius", "0", Patterns::Double(), "Disk/sphere radius, m, > 0.");
+        prm.declare_entry("Lower corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box lower corner, m.");
+        prm.declare_entry("Upper corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box upper corner, m.");
+        prm.declare_entry("Particles per cell direction",
+                          "2",
+                          Patterns::Integer(),
+                          "k in 1..4: k^dim material points per cell, at the "
+                          "centres of equal sub-cells.");
+        declare_material(prm);
+        prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
+        prm.declare_entry("Angular velocity",
+                          dim == 2 ? "0" : "0, 0, 0",
+                          Patterns::List(Patterns::Double(),
+                                         dim == 2 ? 1 : 3,
+                                         dim == 2 ? 1 : 3),
+                          "Initial rigid rotation about the centre, rad/s "
+                          "(2D: one number, counter-clockwise).");
+        prm.declare_entry("Lithostatic initial stress",
+                          "false",
+                          Patterns::Bool(),
+                          "Start from sigma = -p I with grad p = rho g and "
+                          "p = 0 at the body's top (linear elastic and von "
+                          "Mises bodies).");
+        prm.leave_subsection();
+      }
+  }
+
+  template <int dim>
+  void
+  check_body(const BodyParameters<dim> &body, const std::string &name)
+  {
+    const std::string path = name + "/";
+    if (body.shape == BodyParameters<dim>::Shape::disk)
+      check_input(body.radius > 0, path + "Radius", body.radius, "a number > 0 (m)");
+    else
+      for (unsigned int d = 0; d < dim; ++d)
+        check_input(body.upper_corner[d] > body.lower_corner[d],
+                    path + "Upper corner",
+                    body.upper_corner,
+                    "each component larger than the Lower corner's");
+    check_input(body.particles_per_direction >= 1 &&
+                  body.particles_per_direction <= 4,
+                path + "Particles per cell direction",
+                body.particles_per_direction,
+                "an integer in 1..4");
+    const MaterialParameters &m = body.material;
+    check_input(m.model == "linear elastic" || m.model == "neo-Hookean" ||
+                  m.model == "von Mises",
+                path + "Material",
+                m.model,
+                material_models);
+    check_input(m.density > 0, path + "Density", m.density, "a number > 0 (kg/m^3)");
+    check_input(m.bulk_modulus > 0, path + "Bulk modulus", m.bulk_modulus, "a number > 0 (Pa)");
+    check_input(m.shear_modulus > 0, path + "Shear modulus", m.shear_modulus, "a number > 0 (Pa)");
+    if (m.model == "von Mises")
+      check_input(m.yield_stress > 0, path + "Yield stress", m.yield_stress, "a number > 0 (Pa)");
+    check_input(!body.lithostatic_stress || m.model != "neo-Hookean",
+                path + "Lithostatic initial stress",
+                "true",
+                "false for neo-Hookean bodies (their stress follows from F)");
+  }
+
+  template <int dim>
+  void
+  check_parameters(const SimulatorParameters<dim> &p)
+  {
+    check_input(p.end_time > 0, "Time/End time", p.end_time, "a number > 0 (s)");
+    check_input(p.cfl > 0 && p.cfl <= 1, "Time/CFL number", p.cfl, "the interval (0, 1]");
+    check_input(p.pic_fraction >= 0 && p.pic_fraction <= 1,
+                "Solver/PIC fraction", p.pic_fraction, "the interval [0, 1]");
+    check_input(p.energy_growth_limit > 1,
+                "Output/Energy growth limit", p.energy_growth_limit, "a number > 1");
+    check_input(p.statistics_interval >= 1, "Output/Statistics interval", p.statistics_interval, "an integer >= 1");
+    check_input(p.progress_interval >= 1, "Output/Progress interval", p.progress_interval, "an integer >= 1");
+    check_input(!p.bodies.empty(), "Number of bodies", 0, "at least one body");
+    for (const auto &[id, boundary] : p.boundaries)
+      {
+        if (boundary.type == BoundaryType::friction)
+          check_input(boundary.friction >= 0,
+                      "Boundary conditions/Friction coefficients",
+                      std::to_string(id) + ": " + std::to_string(boundary.friction),
+                      "a coefficient >= 0 for each friction boundary, "
+                      "e.g. '" + std::to_string(id) + ": 0.3'");
+      }
+    for (unsigned int b = 0; b < p.bodies.size(); ++b)
+      check_body(p.bodies[b], "Body " + std::to_string(b));
+  }
+
+  template <int dim>
+  Scene<dim>
+  read_scene(const std::string &filename)
+  {
+    unsigned int n_bodies = 0;
+    {
+      ParameterHandler prm;
+      declare_common_parameters(prm);
+      declare_parameters<dim>(prm, 0);
+      prm.parse_input(filename, "", /*skip_undefined=*/true);
+      n_bodies = prm.get_integer("Number of bodies");
+    }
+    ParameterHandler prm;
+    declare_common_parameters(prm);
+    declare_parameters<dim>(prm, n_bodies);
+    prm.parse_input(filename);
+
+    Scene<dim>                scene;
+    SimulatorParameters<dim> &p = scene.simulator;
+    p.output_directory = prm.get("Output directory");
+    check_input(!p.output_directory.empty(), "Output directory", "''", "a directory name");
+    p.gravity = read_vector<dim>(prm, "Gravity", "");
+
+    prm.enter_subsection("Time");
+    p.end_time      = prm.get_double("End time");
+    p.maximum_steps = prm.get_integer("Maximum number of steps");
+    p.cfl           = prm.get_double("CFL number");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Solver");
+    p.update_scheme = prm.get("Update scheme") == "MUSL" ? UpdateScheme::musl : UpdateScheme::usl;
+    p.pic_fraction  = prm.get_double("PIC fraction");
+    prm.leave_subsection();
+
+    GridParameters<dim> &grid = scene.grid;
+    prm.enter_subsection("Grid");
+    grid.lower_corner = Point<dim>(read_vector<dim>(prm, "Lower corner", "Grid/"));
+    grid.upper_corner = Point<dim>(read_vector<dim>(prm, "Upper corner", "Grid/"));
+    for (const int n : Utilities::string_to_int(Utilities::split_string_list(prm.get("Subdivisions"))))
+      grid.subdivisions.push_back(n);
+    for (const int id : Utilities::string_to_int(Utilities::split_string_list(prm.get("Boundary ids"))))
+      grid.face_ids.push_back(id);
+    const std::string grid_box =
+      "[" + prm.get("Lower corner") + "] - [" + prm.get("Upper corner") + "]";
+    for (unsigned int d = 0; d < dim; ++d)
+      check_input(grid.upper_corner[d] > grid.lower_corner[d],
+                  "Grid/Upper corner",
+                  prm.get("Upper corner"),
+                  "each component larger than the Lower corner's");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Boundary conditions");
+    for (const auto &[id, type] : split_map(prm.get("Types")))
+      {
+        BoundaryParameters<dim> &boundary = p.boundaries[std::stoi(id)];
+        boundary.type = type == "fixed"    ? BoundaryType::fixed :
+                        type == "slip"     ? BoundaryType::slip :
+                        type == "friction" ? BoundaryType::friction :
+                        type == "moving"   ? BoundaryType::moving :
+                                             BoundaryType::free;
+        // a friction boundary without a coefficient is reported by
+        // check_parameters()
+        boundary.friction = boundary.type == BoundaryType::friction ? -1. : 0.;
+      }
+    for (const auto &[id, value] : split_map(prm.get("Friction coefficients")))
+      {
+        const auto it = p.boundaries.find(std::stoi(id));
+        check_input(it != p.boundaries.end() &&
+                      it->second.type == BoundaryType::friction,
+                    "Boundary conditions/Friction coefficients",
+                    id + ": " + value,
+                    "coefficients only for boundary ids whose type is friction");
+        it->second.friction = Utilities::string_to_double(value);
+      }
+    for (const auto &[id, value] : split_map(prm.get("Wall velocities")))
+      {
+        const auto it = p.boundaries.find(std::stoi(id));
+        check_input(it != p.boundaries.end() &&
+                      it->second.type == BoundaryType::moving,
+                    "Boundary conditions/Wall velocities",
+                    id + ": " + value,
+                    "velocities only for boundary ids whose type is moving");
+        const std::vector<double> v = Utilities::string_to_double(
+          Utilities::split_string_list(value, ';'));
+        for (unsigned int d = 0; d < dim; ++d)
+          it->second.velocity[d] = v[d];
+      }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    p.output_interval     = prm.get_double("Particle output interval");
+    p.statistics_interval = prm.get_integer("Statistics interval");
+    p.progress_interval   = prm.get_integer("Progress interval");
+    p.energy_growth_limit = prm.get_double("Energy growth limit");
+    p.allow_outflow       = prm.get_bool("Allow outflow");
+    prm.leave_subsection();
+
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const std::string name = "Body " + std::to_string(b);
+        const std::string path = name + "/";
+        prm.enter_subsection(name);
+        BodyParameters<dim> body;
+        body.shape  = prm.get("Shape") == "box" ? BodyParameters<dim>::Shape::box :
+                                                  BodyParameters<dim>::Shape::disk;
+        body.center = Point<dim>(read_vector<dim>(prm, "Center", path));
+        body.radius = prm.get_double("Radius");
+        body.lower_corner = Point<dim>(read_vector<dim>(prm, "Lower corner", path));
+        body.upper_corner = Point<dim>(read_vector<dim>(prm, "Upper corner", path));
+        const int k = prm.get_integer("Particles per cell direction");
+        check_input(k >= 1 && k <= 4, path + "Particles per cell direction", k, "an integer in 1..4");
+        body.particles_per_direction = k;
+        body.material = parse_material(prm, path);
+        body.velocity = read_vector<dim>(prm, "Velocity", path);
+        const std::vector<double> omega = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Angular velocity")));
+        if (dim == 2)
+          body.angular_velocity[2] = omega[0];
+        else
+          for (unsigned int d = 0; d < 3; ++d)
+            body.angular_velocity[d] = omega[d];
+        body.lithostatic_stress = prm.get_bool("Lithostatic initial stress");
+        const bool        is_box   = body.shape == BodyParameters<dim>::Shape::box;
+        const std::string location_entry = is_box ? "Lower corner" : "Center";
+        const std::string location = prm.get(location_entry);
+        prm.leave_subsection();
+
+        check_body(body, name);
+        const auto box = body.bounding_box();
+        for (unsigned int d = 0; d < dim; ++d)
+          check_input(box.first[d] >= grid.lower_corner[d] &&
+                        box.second[d] <= grid.upper_corner[d],
+                      path + location_entry,
+                      location,
+                      "a body lying inside the grid " + grid_box);
+        p.bodies.push_back(body);
+      }
+    check_parameters(p);
+    return scene;
+  }
+} // namespace sable::mpm
+
+// explicit instantiations
+namespace sable::mpm
+{
+#define SABLE_INSTANTIATE(dim)                                                  \
+  template struct BodyParameters<dim>;                                         \
+  template void declare_parameters<dim>(ParameterHandler &, unsigned int);     \
+  template void check_body<dim>(const BodyParameters<dim> &,                   \
+                                const std::string &);                          \
+  template void check_parameters<dim>(const SimulatorParameters<dim> &);       \
+  template Scene<dim> read_scene<dim>(const std::string &);
+  SABLE_INSTANTIATE(2)
+  SABLE_INSTANTIATE(3)
+#undef SABLE_INSTANTIATE
+} // namespace sable::mpm

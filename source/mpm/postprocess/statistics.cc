@@ -1,0 +1,58 @@
+#include <sable/mpm/postprocess/statistics.h>
+
+#include <iomanip>
+
+namespace sable::mpm
+{
+  template <int dim>
+  StatisticsFile<dim>::StatisticsFile(const std::string &filename,
+                                      const unsigned int n_bodies,
+                                      const bool         write)
+  {
+    if (!write)
+      return;
+    file = std::make_unique<std::ofstream>(filename);
+    const char *axes = "xyz";
+    *file << "step,time,dt,kinetic_energy,strain_energy,gravity_energy,"
+             "boundary_work";
+    for (unsigned int d = 0; d < dim; ++d)
+      *file << ",momentum_" << axes[d];
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          *file << ",body" << b << '_' << axes[d];
+        for (unsigned int d = 0; d < dim; ++d)
+          *file << ",body" << b << "_v" << axes[d];
+      }
+    *file << '\n' << std::setprecision(17);
+  }
+
+  template <int dim>
+  void
+  StatisticsFile<dim>::write_row(const unsigned int      step,
+                                 const double            time,
+                                 const double            dt,
+                                 const double            boundary_work,
+                                 const Statistics<dim> &s)
+  {
+    if (!file)
+      return;
+    *file << step << ',' << time << ',' << dt << ',' << s.kinetic_energy << ','
+          << s.strain_energy << ',' << s.gravity_energy << ','
+          << boundary_work;
+    for (unsigned int d = 0; d < dim; ++d)
+      *file << ',' << s.momentum[d];
+    for (unsigned int b = 0; b < s.body_mass.size(); ++b)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          *file << ',' << s.body_position[b][d];
+        for (unsigned int d = 0; d < dim; ++d)
+          *file << ',' << s.body_velocity[b][d];
+      }
+    *file << '\n';
+    file->flush();
+  }
+
+  template class StatisticsFile<2>;
+  template class StatisticsFile<3>;
+} // namespace sable::mpm

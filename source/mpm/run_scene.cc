@@ -1,0 +1,40 @@
+#include <deal.II/grid/grid_generator.h>
+
+#include <sable/mpm/run_scene.h>
+#include <sable/mpm/simulator.h>
+
+namespace sable::mpm
+{
+  template <int dim>
+  void
+  make_grid(const GridParameters<dim> &                 parameters,
+            parallel::distributed::Triangulation<dim> &triangulation)
+  {
+    GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                              parameters.subdivisions,
+                                              parameters.lower_corner,
+                                              parameters.upper_corner,
+                                              /*colorize=*/true);
+    // colorize numbers the faces x-, x+, y-, ... as 0, 1, 2, ...
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          face->set_boundary_id(parameters.face_ids[face->boundary_id()]);
+  }
+
+  template <int dim>
+  void
+  run_scene(const std::string &filename, MPI_Comm communicator)
+  {
+    const Scene<dim> scene = read_scene<dim>(filename);
+    parallel::distributed::Triangulation<dim> triangulation(communicator);
+    make_grid(scene.grid, triangulation);
+    Simulator<dim> simulator(triangulation, scene.simulator);
+    simulator.run();
+  }
+
+  template void make_grid<2>(const GridParameters<2> &, parallel::distributed::Triangulation<2> &);
+  template void make_grid<3>(const GridParameters<3> &, parallel::distributed::Triangulation<3> &);
+  template void run_scene<2>(const std::string &, MPI_Comm);
+  template void run_scene<3>(const std::string &, MPI_Comm);
+} // namespace sable::mpm

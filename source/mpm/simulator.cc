@@ -1,0 +1,746 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/particles/data_out.h>
+
+#include <sable/base/input_error.h>
+#include <sable/mpm/q1_shape.h>
+#include <sable/mpm/simulator.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace sable::mpm
+{
+  namespace
+  {
+    template <int dim>
+    std::string
+    to_string(const Point<dim> &p)
+    {
+      std::ostringstream s;
+      s << std::setprecision(6) << "(";
+      for (unsigned int d = 0; d < dim; ++d)
+        s << (d ? ", " : "") << p[d];
+      s << ")";
+      return s.str();
+    }
+
+    /// Embed a dim x dim tensor into 3 x 3 (plane strain: zeros elsewhere).
+    template <int dim>
+    Tensor<2, 3>
+    embed(const Tensor<2, dim> &a, const double diagonal_fill)
+    {
+      Tensor<2, 3> result;
+      for (unsigned int i = 0; i < 3; ++i)
+        result[i][i] = diagonal_fill;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          result[i][j] = a[i][j];
+      return result;
+    }
+  } // namespace
+
+  template <int dim>
+  Simulator<dim>::Simulator(
+    parallel::distributed::Triangulation<dim> &triangulation,
+    const SimulatorParameters<dim> &           parameters)
+    : triangulation(triangulation)
+    , parameters(parameters)
+    , communicator(triangulation.get_communicator())
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , timer(communicator,
+            pcout,
+            TimerOutput::never,
+            TimerOutput::wall_times)
+    , grid(triangulation)
+    , boundary_conditions(parameters.boundaries)
+  {}
+
+  template <int dim>
+  Simulator<dim>::~Simulator() = default;
+
+  template <int dim>
+  void
+  Simulator<dim>::add_body(const BodyParameters<dim> &body)
+  {
+    AssertThrow(!initialized,
+                ExcMessage("Bodies must be added before initialize()."));
+    parameters.bodies.push_back(body);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::initialize()
+  {
+    if (initialized)
+      return;
+    TimerOutput::Scope scope(timer, "initialize");
+    check_parameters(parameters);
+    // every body must lie inside the grid
+    {
+      const auto box = GridTools::compute_bounding_box(triangulation);
+      for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
+        {
+          const auto body_box = parameters.bodies[b].bounding_box();
+          for (unsigned int d = 0; d < dim; ++d)
+            check_input(body_box.first[d] >= box.get_boundary_points().first[d] - 1e-12 &&
+                          body_box.second[d] <= box.get_boundary_points().second[d] + 1e-12,
+                        "Body " + std::to_string(b),
+                        to_string(body_box.first) + " - " + to_string(body_box.second),
+                        "a body inside the grid " + to_string(box.get_boundary_points().first) +
+                          " - " + to_string(box.get_boundary_points().second));
+        }
+    }
+
+    for (const auto &body : parameters.bodies)
+      {
+        materials.push_back(create_material(body.material));
+        body_wave_speed.push_back(materials.back()->wave_speed());
+        layout.n_history = std::max(layout.n_history, materials.back()->n_history());
+      }
+    has_gravity = parameters.gravity.norm() > 0.;
+
+    grid.setup();
+    boundary_conditions.setup(grid);
+    particle_handler = std::make_unique<Particles::ParticleHandler<dim>>(
+      triangulation, grid.get_mapping(), layout.n_properties());
+    particle_handler->signals.particle_lost.connect(
+      [this](const auto &particle, const auto &) {
+        ++lost_particles;
+        lost_location = particle->get_location();
+      });
+
+    // seed every body; ids are unique over all ranks
+    types::particle_index next_id = 0;
+    for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
+      seed_body(b, next_id);
+    {
+      types::particle_index offset = 0;
+      const types::particle_index local = particle_handler->n_locally_owned_particles();
+      MPI_Exscan(&local, &offset, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, communicator);
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        offset = 0;
+      for (auto &particle : *particle_handler)
+        particle.set_id(particle.get_id() + offset);
+    }
+    particle_handler->update_cached_numbers();
+    for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
+      check_input(Utilities::MPI::sum(
+                    static_cast<unsigned long long>(std::count_if(
+                      particle_handler->begin(), particle_handler->end(),
+                      [&](const auto &p) {
+                        return static_cast<unsigned int>(p.get_properties()[layout.body]) == b;
+                      })),
+                    communicator) > 0,
+                  "Body " + std::to_string(b),
+                  "(no material point)",
+                  "a body large enough to hold at least one material point "
+                  "on this grid");
+
+    const unsigned int n_components = 1 + 2 * dim;
+    nodal_data.reinit(grid.make_partitioner(n_components));
+    nodal_mass.assign(grid.n_relevant_nodes(), 0.);
+    old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
+    new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
+
+    // the signal speed for the first time step, and an energy scale
+    double max_speed = 0, mass_wave_speed2 = 0;
+    for (const auto &particle : *particle_handler)
+      {
+        const auto   props = particle.get_properties();
+        const double c     = body_wave_speed[static_cast<unsigned int>(props[layout.body])];
+        double       v2    = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          v2 += props[layout.velocity + d] * props[layout.velocity + d];
+        max_speed = std::max(max_speed, c + std::sqrt(v2));
+        mass_wave_speed2 += props[layout.mass] * c * c;
+      }
+    max_signal_speed = Utilities::MPI::max(max_speed, communicator);
+    energy_floor     = 1e-14 * Utilities::MPI::sum(mass_wave_speed2, communicator);
+
+    const Statistics<dim> statistics = compute_statistics();
+    initial_energy         = statistics.kinetic_energy + statistics.strain_energy;
+    initial_gravity_energy = statistics.gravity_energy;
+
+    const bool write = !parameters.output_directory.empty();
+    if (write)
+      {
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          std::filesystem::create_directories(parameters.output_directory);
+        MPI_Barrier(communicator);
+      }
+    statistics_file = std::make_unique<StatisticsFile<dim>>(
+      parameters.output_directory + "/statistics.csv",
+      parameters.bodies.size(),
+      write && Utilities::MPI::this_mpi_process(communicator) == 0);
+    statistics_file->write_row(0, 0., 0., 0., statistics);
+
+    pcout << "sable MPM " << dim << "D: " << triangulation.n_global_active_cells()
+          << " cells, " << particle_handler->n_global_particles()
+          << " material points in " << parameters.bodies.size() << " bod"
+          << (parameters.bodies.size() == 1 ? "y" : "ies") << ", "
+          << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s)"
+          << std::endl;
+    initialized = true;
+    if (write && parameters.output_interval > 0)
+      write_particles();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::seed_body(const unsigned int     b,
+                            types::particle_index &next_id)
+  {
+    const BodyParameters<dim> &body     = parameters.bodies[b];
+    const Material &           material = *materials[b];
+    const unsigned int         k        = body.particles_per_direction;
+    const auto                 box      = body.bounding_box();
+    const Point<dim>           top      = body.top_point(parameters.gravity);
+    const Point<dim>           centre =
+      body.shape == BodyParameters<dim>::Shape::disk ?
+        body.center :
+        Point<dim>((Tensor<1, dim>(body.lower_corner) + Tensor<1, dim>(body.upper_corner)) / 2.);
+
+    std::vector<double> properties(layout.n_properties(), 0.);
+    unsigned int        n_sub = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_sub *= k;
+
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const BoundingBox<dim> cell_box = cell->bounding_box();
+        const Point<dim> lower = cell_box.get_boundary_points().first;
+        const Point<dim> upper = cell_box.get_boundary_points().second;
+        bool             overlaps = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          overlaps = overlaps && upper[d] >= box.first[d] && lower[d] <= box.second[d];
+        if (!overlaps)
+          continue;
+        const double sub_volume = cell->measure() / n_sub;
+        for (unsigned int i = 0; i < n_sub; ++i)
+          {
+            Point<dim> reference, x;
+            for (unsigned int d = 0, rest = i; d < dim; ++d, rest /= k)
+              {
+                reference[d] = ((rest % k) + 0.5) / k;
+                x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
+              }
+            if (!body.contains(x))
+              continue;
+            std::fill(properties.begin(), properties.end(), 0.);
+            properties[layout.mass]           = material.density() * sub_volume;
+            properties[layout.initial_volume] = sub_volume;
+            properties[layout.body]           = b;
+            // v = v0 + omega x (x - c)
+            Tensor<1, 3> r, omega_cross_r;
+            for (unsigned int d = 0; d < dim; ++d)
+              r[d] = x[d] - centre[d];
+            omega_cross_r = cross_product_3d(body.angular_velocity, r);
+            for (unsigned int d = 0; d < dim; ++d)
+              properties[layout.velocity + d] = body.velocity[d] + omega_cross_r[d];
+            for (unsigned int d = 0; d < dim; ++d)
+              properties[layout.deformation + d * dim + d] = 1.;
+            if (body.lithostatic_stress)
+              {
+                // p = rho g . (x - x_top) >= 0, sigma = -p I
+                const double pressure =
+                  material.density() * (parameters.gravity * (x - top));
+                for (unsigned int d = 0; d < 3; ++d)
+                  properties[layout.stress + d] = -pressure;
+              }
+            particle_handler->insert_particle(x, reference, next_id++, cell,
+                                              make_array_view(properties));
+          }
+      }
+  }
+
+  template <int dim>
+  double
+  Simulator<dim>::compute_time_step() const
+  {
+    double dt = parameters.cfl * grid.minimum_cell_size() / max_signal_speed;
+    if (time + dt > parameters.end_time)
+      dt = parameters.end_time - time;
+    return dt;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::particles_to_grid(const bool with_forces)
+  {
+    constexpr unsigned int n_components = 1 + 2 * dim;
+    nodal_data = 0.;
+    nodal_data.zero_out_ghost_values();
+    double *const grid_values = nodal_data.get_values();
+    const auto    stress_index = [](const unsigned int i, const unsigned int j) {
+      // unrolled (xx yy zz xy xz yz) index of the in-plane components
+      return i == j ? i : (i + j == 1 ? 3u : (i + j == 2 ? 4u : 5u));
+    };
+
+    Q1Shape<dim> shape;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const auto particles = particle_handler->particles_in_cell(cell);
+        if (particles.begin() == particles.end())
+          continue;
+        const typename Grid<dim>::CellData &data = grid.cell_data(cell);
+        for (const auto &particle : particles)
+          {
+            const auto props = particle.get_properties();
+            shape.evaluate(particle.get_reference_location(), data.inverse_h);
+            const double mass = props[layout.mass];
+            // internal force -V sigma . grad N, V = det(F) V0
+            Tensor<2, dim> volume_stress;
+            if (with_forces)
+              {
+                Tensor<2, dim> F;
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = 0; j < dim; ++j)
+                    F[i][j] = props[layout.deformation + i * dim + j];
+                const double volume = determinant(F) * props[layout.initial_volume];
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = 0; j < dim; ++j)
+                    volume_stress[i][j] = volume * props[layout.stress + stress_index(i, j)];
+              }
+            for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+              {
+                double *const node = grid_values + data.nodes[v] * n_components;
+                const double  weight = mass * shape.values[v];
+                node[0] += weight;
+                for (unsigned int d = 0; d < dim; ++d)
+                  node[1 + d] += weight * props[layout.velocity + d];
+                if (with_forces)
+                  {
+                    const Tensor<1, dim> force = -(volume_stress * shape.gradients[v]);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      node[1 + dim + d] += force[d];
+                  }
+              }
+          }
+      }
+    nodal_data.compress(VectorOperation::add);
+    nodal_data.update_ghost_values();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::update_grid_velocities(const bool with_forces)
+  {
+    constexpr unsigned int n_components = 1 + 2 * dim;
+    const double *const    grid_values  = nodal_data.get_values();
+    const unsigned int     n_nodes      = grid.n_relevant_nodes();
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const double *const node = grid_values + i * n_components;
+        const double        mass = node[0];
+        nodal_mass[i]            = mass;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double v = mass > 0. ? node[1 + d] / mass : 0.;
+            if (with_forces)
+              {
+                old_velocity[i * dim + d] = v;
+                new_velocity[i * dim + d] =
+                  mass > 0. ? v + time_step * (node[1 + dim + d] / mass +
+                                               parameters.gravity[d]) :
+                              0.;
+              }
+            else
+              new_velocity[i * dim + d] = v;
+          }
+      }
+    if (!boundary_conditions.empty())
+      boundary_work += boundary_conditions.apply(
+        new_velocity, nodal_mass, nodal_data.get_partitioner()->locally_owned_size() / n_components);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::grid_to_particles(const bool update_positions,
+                                    const bool update_stresses)
+  {
+    const double alpha = parameters.pic_fraction;
+    double       max_speed = 0;
+    bool         failed = false, too_far = false;
+    Point<dim>   failure_location;
+    Q1Shape<dim> shape;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const auto particles = particle_handler->particles_in_cell(cell);
+        if (particles.begin() == particles.end())
+          continue;
+        const typename Grid<dim>::CellData &data = grid.cell_data(cell);
+        for (auto &particle : particles)
+          {
+            const auto props = particle.get_properties();
+            shape.evaluate(particle.get_reference_location(), data.inverse_h);
+            Tensor<1, dim> velocity_change, grid_velocity;
+            Tensor<2, dim> L;
+            for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+              {
+                const double *const v_new = &new_velocity[data.nodes[v] * dim];
+                const double *const v_old = &old_velocity[data.nodes[v] * dim];
+                const double        N     = shape.values[v];
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    if (update_positions)
+                      {
+                        velocity_change[d] += N * (v_new[d] - v_old[d]);
+                        grid_velocity[d] += N * v_new[d];
+                      }
+                    if (update_stresses)
+                      for (unsigned int e = 0; e < dim; ++e)
+                        L[d][e] += v_new[d] * shape.gradients[v][e];
+                  }
+              }
+            const unsigned int body = static_cast<unsigned int>(props[layout.body]);
+            if (update_positions)
+              {
+                double speed2 = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    double &v = props[layout.velocity + d];
+                    v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
+                    speed2 += v * v;
+                  }
+                // a particle may not cross more than one cell per step
+                const Tensor<1, dim> displacement = time_step * grid_velocity;
+                Point<dim>           location     = particle.get_location();
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (std::abs(displacement[d]) * data.inverse_h[d] > 1.)
+                    {
+                      too_far          = true;
+                      failure_location = location;
+                    }
+                location += displacement;
+                particle.set_location(location);
+                max_speed = std::max(max_speed, std::sqrt(speed2) + body_wave_speed[body]);
+                if (!std::isfinite(speed2))
+                  {
+                    failed           = true;
+                    failure_location = location;
+                  }
+              }
+            if (update_stresses)
+              {
+                Tensor<2, dim> F;
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = 0; j < dim; ++j)
+                    F[i][j] = props[layout.deformation + i * dim + j];
+                Tensor<2, dim> identity;
+                for (unsigned int d = 0; d < dim; ++d)
+                  identity[d][d] = 1.;
+                F = (identity + time_step * L) * F;
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = 0; j < dim; ++j)
+                    props[layout.deformation + i * dim + j] = F[i][j];
+                SymmetricTensor<2, 3> stress;
+                for (unsigned int c = 0; c < 6; ++c)
+                  stress.access_raw_entry(c) = props[layout.stress + c];
+                materials[body]->update_stress(embed<dim>(L, 0.),
+                                               embed<dim>(F, 1.),
+                                               time_step,
+                                               stress,
+                                               layout.n_history > 0 ? &props[layout.history] : nullptr);
+                for (unsigned int c = 0; c < 6; ++c)
+                  {
+                    props[layout.stress + c] = stress.access_raw_entry(c);
+                    if (!std::isfinite(stress.access_raw_entry(c)))
+                      {
+                        failed           = true;
+                        failure_location = particle.get_location();
+                      }
+                  }
+              }
+          }
+      }
+    if (update_positions)
+      max_signal_speed = Utilities::MPI::max(max_speed, communicator);
+    report_failure(failed, failure_location, "a velocity or stress is not a finite number (NaN or infinity)");
+    report_failure(too_far, failure_location,
+                   "a material point moved more than one cell in one step "
+                   "(reduce 'Time/CFL number')");
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::report_failure(const bool         failed_here,
+                                 const Point<dim> & location,
+                                 const std::string &what) const
+  {
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int failed_rank = Utilities::MPI::min(
+      failed_here ? rank : numbers::invalid_unsigned_int, communicator);
+    if (failed_rank == numbers::invalid_unsigned_int)
+      return;
+    const Point<dim> where = Utilities::MPI::broadcast(communicator, location, failed_rank);
+    std::ostringstream message;
+    message << "the run became unstable at step " << step_number << ", time "
+            << std::setprecision(10) << time << ": " << what
+            << ", at position " << to_string(where);
+    throw std::runtime_error(message.str());
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::sort_particles()
+  {
+    const unsigned long long before = particle_handler->n_global_particles();
+    lost_particles = 0;
+    particle_handler->sort_particles_into_subdomains_and_cells();
+    const unsigned long long lost = Utilities::MPI::sum(lost_particles, communicator);
+    if (lost > 0)
+      {
+        if (!parameters.allow_outflow)
+          report_failure(lost_particles > 0, lost_location,
+                         std::to_string(lost) + " material point(s) left the grid "
+                         "(set 'Output/Allow outflow = true' to let them go)");
+        pcout << "step " << step_number << ": " << lost
+              << " material point(s) left the grid" << std::endl;
+      }
+    (void)before;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::step()
+  {
+    if (!initialized)
+      initialize();
+    time_step = compute_time_step();
+    const bool usl = parameters.update_scheme == UpdateScheme::usl;
+    {
+      TimerOutput::Scope scope(timer, "particles to grid");
+      particles_to_grid(true);
+    }
+    {
+      TimerOutput::Scope scope(timer, "grid update and boundaries");
+      update_grid_velocities(true);
+    }
+    if (usl)
+      {
+        TimerOutput::Scope scope(timer, "grid to particles and stresses");
+        grid_to_particles(true, true);
+      }
+    else
+      {
+        {
+          TimerOutput::Scope scope(timer, "grid to particles and stresses");
+          grid_to_particles(true, false);
+        }
+        {
+          TimerOutput::Scope scope(timer, "particles to grid");
+          particles_to_grid(false);
+        }
+        {
+          TimerOutput::Scope scope(timer, "grid update and boundaries");
+          update_grid_velocities(false);
+        }
+        TimerOutput::Scope scope(timer, "grid to particles and stresses");
+        grid_to_particles(false, true);
+      }
+    {
+      TimerOutput::Scope scope(timer, "sort particles");
+      sort_particles();
+    }
+    time += time_step;
+    ++step_number;
+  }
+
+  template <int dim>
+  Statistics<dim>
+  Simulator<dim>::compute_statistics() const
+  {
+    const unsigned int n_bodies = parameters.bodies.size();
+    // kinetic, strain, gravity, momentum (dim), per body: mass, m x, m v
+    const unsigned int  n_values = 3 + dim + n_bodies * (1 + 2 * dim);
+    std::vector<double> sums(n_values, 0.);
+    for (const auto &particle : *particle_handler)
+      {
+        const auto         props = particle.get_properties();
+        const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+        const double       mass  = props[layout.mass];
+        const Point<dim>   x     = particle.get_location();
+        double             v2    = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          v2 += props[layout.velocity + d] * props[layout.velocity + d];
+        sums[0] += 0.5 * mass * v2;
+        Tensor<2, dim> F;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            F[i][j] = props[layout.deformation + i * dim + j];
+        SymmetricTensor<2, 3> stress;
+        for (unsigned int c = 0; c < 6; ++c)
+          stress.access_raw_entry(c) = props[layout.stress + c];
+        sums[1] += props[layout.initial_volume] *
+                   materials[body]->strain_energy_density(stress, embed<dim>(F, 1.));
+        sums[2] -= mass * (parameters.gravity * x);
+        double *const body_sums = &sums[3 + dim + body * (1 + 2 * dim)];
+        body_sums[0] += mass;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            sums[3 + d] += mass * props[layout.velocity + d];
+            body_sums[1 + d] += mass * x[d];
+            body_sums[1 + dim + d] += mass * props[layout.velocity + d];
+          }
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+
+    Statistics<dim> s;
+    s.kinetic_energy = sums[0];
+    s.strain_energy  = sums[1];
+    s.gravity_energy = sums[2];
+    for (unsigned int d = 0; d < dim; ++d)
+      s.momentum[d] = sums[3 + d];
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const double *const body_sums = &sums[3 + dim + b * (1 + 2 * dim)];
+        s.body_mass.push_back(body_sums[0]);
+        Point<dim>     x;
+        Tensor<1, dim> v;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            x[d] = body_sums[1 + d] / body_sums[0];
+            v[d] = body_sums[1 + dim + d] / body_sums[0];
+          }
+        s.body_position.push_back(x);
+        s.body_velocity.push_back(v);
+      }
+    s.n_particles = particle_handler->n_global_particles();
+    return s;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::check_energy(const Statistics<dim> &s) const
+  {
+    // what the scene can hold: initial energy plus the work of gravity
+    // and of moving walls
+    const double budget = std::max(initial_energy + (initial_gravity_energy - s.gravity_energy) +
+                                     boundary_work,
+                                   0.) +
+                          energy_floor;
+    const double energy = s.kinetic_energy + s.strain_energy;
+    if (!(energy <= parameters.energy_growth_limit * budget))
+      {
+        std::ostringstream message;
+        message << "the run became unstable at step " << step_number
+                << ", time " << std::setprecision(10) << time
+                << ": kinetic + strain energy " << energy
+                << " exceeds 'Output/Energy growth limit' = "
+                << parameters.energy_growth_limit << " times the energy "
+                << "supplied (" << budget << ")";
+        // locate the fastest particle
+        double     fastest = -1;
+        Point<dim> where;
+        for (const auto &particle : *particle_handler)
+          {
+            double v2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              v2 += std::pow(particle.get_properties()[layout.velocity + d], 2);
+            if (v2 > fastest)
+              {
+                fastest = v2;
+                where   = particle.get_location();
+              }
+          }
+        const double global_fastest = Utilities::MPI::max(fastest, communicator);
+        const unsigned int rank = Utilities::MPI::min(
+          fastest == global_fastest ? Utilities::MPI::this_mpi_process(communicator) :
+                                      numbers::invalid_unsigned_int,
+          communicator);
+        where = Utilities::MPI::broadcast(communicator, where, rank);
+        message << "; fastest material point at " << to_string(where);
+        throw std::runtime_error(message.str());
+      }
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::write_particles()
+  {
+    TimerOutput::Scope     scope(timer, "output");
+    Particles::DataOut<dim> data_out;
+    std::vector<std::string> history_names;
+    for (const auto &material : materials)
+      if (material->n_history() == layout.n_history)
+        history_names = material->history_names();
+    const std::vector<std::string> names = layout.names(history_names);
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation(names.size(), DataComponentInterpretation::component_is_scalar);
+    for (unsigned int d = 0; d < dim; ++d)
+      interpretation[layout.velocity + d] = DataComponentInterpretation::component_is_part_of_vector;
+    data_out.build_patches(*particle_handler, names, interpretation);
+    const std::string name = data_out.write_vtu_with_pvtu_record(
+      parameters.output_directory + "/", "particles", output_counter++, communicator, 5);
+    particle_files.emplace_back(time, name);
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        std::ofstream pvd(parameters.output_directory + "/particles.pvd");
+        DataOutBase::write_pvd_record(pvd, particle_files);
+      }
+    next_output_time = time + parameters.output_interval;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::run()
+  {
+    initialize();
+    Timer wall;
+    const bool write_output =
+      !parameters.output_directory.empty() && parameters.output_interval > 0;
+    const auto finished = [&]() {
+      return time >= parameters.end_time * (1 - 1e-14) ||
+             (parameters.maximum_steps > 0 && step_number >= parameters.maximum_steps);
+    };
+    while (!finished())
+      {
+        step();
+        const bool last = finished();
+        const bool progress = step_number % parameters.progress_interval == 0 || last;
+        if (step_number % parameters.statistics_interval == 0 || progress)
+          {
+            TimerOutput::Scope    scope(timer, "statistics");
+            const Statistics<dim> s = compute_statistics();
+            check_energy(s);
+            if (step_number % parameters.statistics_interval == 0 || last)
+              statistics_file->write_row(step_number, time, time_step, boundary_work, s);
+            if (progress)
+              {
+                const double elapsed = wall.wall_time();
+                double       fraction = time / parameters.end_time;
+                if (parameters.maximum_steps > 0)
+                  fraction = std::max(fraction, double(step_number) / parameters.maximum_steps);
+                pcout << "step " << std::setw(7) << step_number << "  t = " << std::setprecision(4)
+                      << std::scientific << time << "  dt = " << time_step
+                      << "  E_kin = " << s.kinetic_energy << "  E_strain = " << s.strain_energy
+                      << std::fixed << std::setprecision(1) << "  wall " << elapsed << " s, ~"
+                      << elapsed * (1. - fraction) / std::max(fraction, 1e-12) << " s left"
+                      << std::defaultfloat << std::setprecision(6) << std::endl;
+              }
+          }
+        if (write_output && (time >= next_output_time * (1 - 1e-12) || last))
+          write_particles();
+      }
+    if (parameters.print_timings)
+      timer.print_summary();
+    if (!parameters.output_directory.empty())
+      pcout << "Output written to " << parameters.output_directory
+            << "/ (statistics.csv" << (write_output ? ", particles.pvd" : "") << ")" << std::endl;
+    pcout << "Finished " << step_number << " steps to t = " << time << " in "
+          << wall.wall_time() << " s wall time" << std::endl;
+  }
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace sable::mpm
