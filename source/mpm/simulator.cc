@@ -356,9 +356,16 @@ namespace sable::mpm
               new_velocity[i * dim + d] = v;
           }
       }
-    if (!boundary_conditions.empty())
-      boundary_work += boundary_conditions.apply(
-        new_velocity, nodal_mass, nodal_data.get_partitioner()->locally_owned_size() / n_components);
+    if (boundary_conditions.empty())
+      return;
+    if (with_forces)
+      boundary_work += Utilities::MPI::sum(
+        boundary_conditions.apply(new_velocity,
+                                  nodal_mass,
+                                  nodal_data.get_partitioner()->locally_owned_size() / n_components),
+        communicator);
+    else
+      boundary_conditions.apply_to_remapped(new_velocity, nodal_mass);
   }
 
   template <int dim>
@@ -621,14 +628,15 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::check_energy(const Statistics<dim> &s) const
+  Simulator<dim>::check_energy(const Statistics<dim> &s)
   {
-    // what the scene can hold: initial energy plus the work of gravity
-    // and of moving walls
-    const double budget = std::max(initial_energy + (initial_gravity_energy - s.gravity_energy) +
-                                     boundary_work,
-                                   0.) +
-                          energy_floor;
+    // what the scene can hold: the initial energy plus the largest release
+    // of gravitational energy so far and the work of moving walls (a body
+    // rising again after a bounce gives no new energy)
+    largest_gravity_release =
+      std::max(largest_gravity_release, initial_gravity_energy - s.gravity_energy);
+    const double budget =
+      initial_energy + largest_gravity_release + std::max(boundary_work, 0.) + energy_floor;
     const double energy = s.kinetic_energy + s.strain_energy;
     if (!(energy <= parameters.energy_growth_limit * budget))
       {

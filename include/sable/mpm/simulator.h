@@ -127,7 +127,7 @@ namespace sable::mpm
     void
     write_particles();
     void
-    check_energy(const Statistics<dim> &statistics) const;
+    check_energy(const Statistics<dim> &statistics);
     /// Stop all ranks if any flagged a problem at @p location.
     void
     report_failure(const bool         failed_here,
@@ -163,6 +163,7 @@ namespace sable::mpm
     double       initial_energy   = 0;
     double       initial_gravity_energy = 0;
     double       energy_floor           = 0;
+    double       largest_gravity_release = 0;
 
     unsigned long long lost_particles = 0;
     Point<dim>         lost_location;

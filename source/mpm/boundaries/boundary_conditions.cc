@@ -57,11 +57,13 @@ namespace sable::mpm
   double
   BoundaryConditions<dim>::apply(std::vector<double> &      velocity,
                                  const std::vector<double> &mass,
-                                 const unsigned int         n_owned_nodes) const
+                                 const unsigned int         n_owned_nodes)
   {
     double work = 0;
-    for (const NodeConstraint &c : constraints)
+    in_contact.assign(constraints.size(), false);
+    for (unsigned int i = 0; i < constraints.size(); ++i)
       {
+        const NodeConstraint &c = constraints[i];
         if (mass[c.node] <= 0.)
           continue;
         double *const                  v = &velocity[c.node * dim];
@@ -92,6 +94,7 @@ namespace sable::mpm
                 const double approach = c.sign * v[c.direction];
                 if (approach <= 0.)
                   break;
+                in_contact[i] = true;
                 double tangential_norm2 = 0;
                 for (unsigned int d = 0; d < dim; ++d)
                   if (d != c.direction)
@@ -112,6 +115,41 @@ namespace sable::mpm
           }
       }
     return work;
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::apply_to_remapped(std::vector<double> &      velocity,
+                                             const std::vector<double> &mass) const
+  {
+    for (unsigned int i = 0; i < constraints.size(); ++i)
+      {
+        const NodeConstraint &c = constraints[i];
+        if (mass[c.node] <= 0.)
+          continue;
+        double *const                  v    = &velocity[c.node * dim];
+        const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
+        switch (wall.type)
+          {
+            case BoundaryType::fixed:
+              for (unsigned int d = 0; d < dim; ++d)
+                v[d] = 0.;
+              break;
+            case BoundaryType::slip:
+              v[c.direction] = 0.;
+              break;
+            case BoundaryType::moving:
+              for (unsigned int d = 0; d < dim; ++d)
+                v[d] = wall.velocity[d];
+              break;
+            case BoundaryType::friction:
+              if (in_contact[i])
+                v[c.direction] = 0.;
+              break;
+            case BoundaryType::free:
+              break;
+          }
+      }
   }
 
   template class BoundaryConditions<2>;

@@ -29,14 +29,25 @@ namespace sable::mpm
 
     /**
      * Apply all conditions to the velocities (dim values per relevant node,
-     * node by node) at nodes with mass. Returns the power the walls put into
-     * the grid, sum m_i (v_new - v_old) . v_wall / dt for moving walls,
-     * times dt (the work of this step), summed over locally owned nodes.
+     * node by node) at nodes with mass, after the momentum update. Friction
+     * walls remember which nodes they held. Returns the work the moving
+     * walls did in this step, sum m_i (v_wall - v_i) . v_wall over locally
+     * owned nodes.
      */
     double
     apply(std::vector<double> &      velocity,
           const std::vector<double> &mass,
-          const unsigned int         n_owned_nodes) const;
+          const unsigned int         n_owned_nodes);
+
+    /**
+     * Apply the conditions to velocities remapped from the particles (MUSL's
+     * second grid pass). A friction wall holds the normal velocity of
+     * exactly the nodes it held in apply(), without new friction, so that
+     * the strain rate sees the motion the particles were given.
+     */
+    void
+    apply_to_remapped(std::vector<double> &velocity,
+                      const std::vector<double> &mass) const;
 
     bool
     empty() const
@@ -55,6 +66,8 @@ namespace sable::mpm
 
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
     std::vector<NodeConstraint>                            constraints;
+    /// per constraint: did the friction wall act in the last apply()?
+    std::vector<bool> in_contact;
   };
 } // namespace sable::mpm
 
