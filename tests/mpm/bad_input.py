@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""Every kind of bad input stops the program before any step: non-zero exit,
+a message naming the entry, the value and what is allowed, and no output
+written (an existing statistics.csv is left untouched)."""
+import os
+import subprocess
+from scene_test import *
+
+good_entries = {"Dimension": 2, "Time/End time": 0.01,
+                "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 1", "Grid/Subdivisions": "10, 10"}
+good_body = {"Shape": "disk", "Center": "0.5, 0.5", "Radius": 0.2, "Young's modulus": 1e6,
+             "Poisson's ratio": 0.3, "Density": 1000}
+
+# (name, entry changes, body changes, words the message must contain)
+cases = [
+    ("unknown_entry", {"Time/Frobnication": 1}, {}, ["Frobnication"]),
+    ("wrong_type", {"Time/End time": "soon"}, {}, ["End time", "soon"]),
+    ("density_zero", {}, {"Density": 0}, ["Density", "0", "> 0"]),
+    ("density_negative", {}, {"Density": -5}, ["Density", "-5", "> 0"]),
+    ("poisson_half", {}, {"Poisson's ratio": 0.5}, ["Poisson's ratio", "0.5", "(-1, 0.5)"]),
+    ("poisson_minus_one", {}, {"Poisson's ratio": -1}, ["Poisson's ratio", "-1", "(-1, 0.5)"]),
+    ("cfl_zero", {"Time/CFL number": 0}, {}, ["CFL number", "0", "(0, 1]"]),
+    ("cfl_large", {"Time/CFL number": 1.5}, {}, ["CFL number", "1.5", "(0, 1]"]),
+    ("ppc_zero", {}, {"Particles per cell direction": 0}, ["Particles per cell direction", "0", "1..4"]),
+    ("ppc_five", {}, {"Particles per cell direction": 5}, ["Particles per cell direction", "5", "1..4"]),
+    ("body_outside", {}, {"Center": "0.9, 0.5"}, ["Body 0/Center", "0.9, 0.5", "inside the grid"]),
+    ("no_bodies", {"Number of bodies": 0}, {}, ["Number of bodies", "0"]),
+    ("radius_zero", {}, {"Radius": 0}, ["Radius", "0", "> 0"]),
+    ("friction_negative", {"Boundary conditions/Types": "2: friction",
+                           "Boundary conditions/Friction coefficients": "2: -0.1"}, {}, ["Friction coefficients", "-0.1", ">= 0"]),
+    ("yield_missing", {}, {"Material": "von Mises"}, ["Yield stress", "0", "> 0"]),
+]
+
+for name, entries, body_changes, words in cases:
+    directory = os.path.join(WORK, name)
+    os.makedirs(os.path.join(directory, "output"), exist_ok=True)
+    sentinel = os.path.join(directory, "output", "statistics.csv")
+    with open(sentinel, "w") as f:
+        f.write("previous run\n")
+    e = dict(good_entries, **entries)
+    e["Output directory"] = "output"
+    bodies = [dict(good_body, **body_changes)]
+    text = prm_text(e, bodies)
+    if "Number of bodies" in entries:
+        text = text.replace("set Number of bodies = 1\n", "")
+    with open(os.path.join(directory, "scene.prm"), "w") as f:
+        f.write(text)
+    result = subprocess.run([SABLE, "scene.prm"], cwd=directory, capture_output=True, text=True)
+    message = result.stdout + result.stderr
+    check(f"{name}: non-zero exit", result.returncode != 0, f"exit code {result.returncode}")
+    missing = [w for w in words if w not in message]
+    check(f"{name}: message names {words}", not missing, message.strip().splitlines()[-1] if message.strip() else "(no message)")
+    check(f"{name}: no step taken", "step " not in result.stdout)
+    with open(sentinel) as f:
+        check(f"{name}: existing output untouched", f.read() == "previous run\n")
+    check(f"{name}: nothing else written", os.listdir(os.path.join(directory, "output")) == ["statistics.csv"])
+
+missing_file = subprocess.run([SABLE, os.path.join(WORK, "does_not_exist.prm")], capture_output=True, text=True)
+check("unreadable file: non-zero exit", missing_file.returncode != 0)
+check("unreadable file: message names the file", "does_not_exist.prm" in missing_file.stderr, missing_file.stderr.strip())
+finish()
