@@ -5,6 +5,7 @@
 #include <sable/mpm/parameters.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
@@ -203,10 +204,11 @@ namespace sable::mpm
   {
     const std::string zero = zeros(dim);
     prm.declare_entry("Output directory",
-                      "output/scene",
+                      "",
                       Patterns::Anything(),
-                      "Directory for all output of the run; created after "
-                      "the parameters are checked.");
+                      "Directory for all output of the run, created after "
+                      "the parameters are checked. Empty: output/<name of "
+                      "the parameter file without .prm>.");
     prm.declare_entry("Number of bodies",
                       "1",
                       Patterns::Integer(1, 1000000),
@@ -435,7 +437,9 @@ namespace sable::mpm
     Scene<dim>                scene;
     SimulatorParameters<dim> &p = scene.simulator;
     p.output_directory = prm.get("Output directory");
-    check_input(!p.output_directory.empty(), "Output directory", "''", "a directory name");
+    if (p.output_directory.empty())
+      p.output_directory =
+        "output/" + std::filesystem::path(filename).stem().string();
     p.gravity = read_vector<dim>(prm, "Gravity", "");
 
     prm.enter_subsection("Time");
