@@ -1,4 +1,5 @@
 // The `sable` program: reads a scene from a .prm file and runs it.
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
@@ -94,6 +95,19 @@ main(int argc, char **argv)
     {
       if (root)
         std::cerr << "sable: " << error.what() << std::endl;
+      return 2;
+    }
+  catch (const dealii::ExceptionBase &error)
+    {
+      // deal.II's own report (e.g. a parameter file line that does not match
+      // its pattern): the explanation without the source location and
+      // stack trace
+      if (root)
+        {
+          std::cerr << "sable: error: ";
+          error.print_info(std::cerr);
+          std::cerr << std::endl;
+        }
       return 2;
     }
   catch (const std::exception &error)

@@ -3,6 +3,8 @@
 #include <sable/mpm/run_scene.h>
 #include <sable/mpm/simulator.h>
 
+#include <optional>
+
 namespace sable::mpm
 {
   template <int dim>
@@ -29,8 +31,19 @@ namespace sable::mpm
     const Scene<dim> scene = read_scene<dim>(filename);
     parallel::distributed::Triangulation<dim> triangulation(communicator);
     make_grid(scene.grid, triangulation);
-    Simulator<dim> simulator(triangulation, scene.simulator);
-    simulator.run();
+    std::optional<Simulator<dim>> simulator;
+    simulator.emplace(triangulation, scene.simulator);
+    try
+      {
+        simulator->run();
+      }
+    catch (...)
+      {
+        // destroy the simulator while no exception is in flight, so its
+        // timers finish normally, then pass the error on
+        simulator.reset();
+        throw;
+      }
   }
 
   template void make_grid<2>(const GridParameters<2> &, parallel::distributed::Triangulation<2> &);

@@ -491,7 +491,7 @@ namespace sable::mpm
       return;
     const Point<dim> where = Utilities::MPI::broadcast(communicator, location, failed_rank);
     std::ostringstream message;
-    message << "the run became unstable at step " << step_number << ", time "
+    message << "the run stopped at step " << step_number << ", time "
             << std::setprecision(10) << time << ": " << what
             << ", at position " << to_string(where);
     throw std::runtime_error(message.str());

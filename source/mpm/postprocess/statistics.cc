@@ -13,7 +13,7 @@ namespace sable::mpm
       return;
     file = std::make_unique<std::ofstream>(filename);
     const char *axes = "xyz";
-    *file << "step,time,dt,kinetic_energy,strain_energy,gravity_energy,"
+    *file << "step,time,dt,particles,kinetic_energy,strain_energy,gravity_energy,"
              "boundary_work";
     for (unsigned int d = 0; d < dim; ++d)
       *file << ",momentum_" << axes[d];
@@ -37,7 +37,8 @@ namespace sable::mpm
   {
     if (!file)
       return;
-    *file << step << ',' << time << ',' << dt << ',' << s.kinetic_energy << ','
+    *file << step << ',' << time << ',' << dt << ',' << s.n_particles << ','
+          << s.kinetic_energy << ','
           << s.strain_energy << ',' << s.gravity_energy << ','
           << boundary_work;
     for (unsigned int d = 0; d < dim; ++d)
