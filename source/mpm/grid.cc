@@ -27,9 +27,13 @@ namespace sable::mpm
 
     cells.assign(triangulation.n_active_cells(), CellData());
     double h_min = std::numeric_limits<double>::max();
+    Tensor<1, dim> huge;
+    for (unsigned int d = 0; d < dim; ++d)
+      huge[d] = std::numeric_limits<double>::max();
+    spacing.assign(n_relevant_nodes(), huge);
     std::vector<types::global_dof_index> dofs(nodes_per_cell);
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (!cell->is_artificial())
         {
           CellData &data = cells[cell->active_cell_index()];
           cell->get_dof_indices(dofs);
@@ -39,7 +43,10 @@ namespace sable::mpm
             {
               const double h = cell->extent_in_direction(d);
               data.inverse_h[d] = 1. / h;
-              h_min = std::min(h_min, h);
+              if (cell->is_locally_owned())
+                h_min = std::min(h_min, h);
+              for (unsigned int v = 0; v < nodes_per_cell; ++v)
+                spacing[data.nodes[v]][d] = std::min(spacing[data.nodes[v]][d], h);
             }
         }
     min_cell_size = Utilities::MPI::min(h_min, triangulation.get_communicator());

@@ -54,6 +54,33 @@ namespace sable::mpm
       return result;
     }
 
+    /// The number in @p text, or NaN if it is not one.
+    double
+    to_double(const std::string &text)
+    {
+      try
+        {
+          std::size_t end   = 0;
+          const double value = std::stod(text, &end);
+          if (end == text.size())
+            return value;
+        }
+      catch (...)
+        {}
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+
+    /// A friction coefficient: a number >= 0, or 'stick' (infinity).
+    double
+    parse_friction(const std::string &text, const std::string &entry)
+    {
+      if (text == "stick" || text == "inf")
+        return std::numeric_limits<double>::infinity();
+      const double value = to_double(text);
+      check_input(value >= 0, entry, text, "a coefficient >= 0 or 'stick'");
+      return value;
+    }
+
     const char *material_models = "linear elastic|neo-Hookean|von Mises";
 
     void
@@ -294,6 +321,44 @@ namespace sable::mpm
                       "by ';', e.g. '3: 0.1; 0'.");
     prm.leave_subsection();
 
+    prm.enter_subsection("Contact");
+    prm.declare_entry("Model",
+                      "none",
+                      Patterns::Selection("none|bardenhagen 2000|bardenhagen 2001"),
+                      "Contact between bodies. none: all bodies share one "
+                      "velocity field (no slip, no separation, no cost). "
+                      "bardenhagen 2000: a velocity field per body, Coulomb "
+                      "friction while bodies approach. bardenhagen 2001: also "
+                      "while the normal traction is compressive.");
+    prm.declare_entry("Friction coefficient",
+                      "0",
+                      Patterns::Anything(),
+                      "Coulomb coefficient >= 0 between any two groups not "
+                      "listed in 'Group friction'; 'stick' for no slip.");
+    prm.declare_entry("Group friction",
+                      "",
+                      Patterns::Anything(),
+                      "Coefficients per pair of body groups, e.g. "
+                      "'0-1: 0.5, 1-1: stick'.");
+    prm.declare_entry("Impulse scaling",
+                      "0.5",
+                      Patterns::Anything(),
+                      "gamma in [0.5, 1] of the contact-impulse scaling "
+                      "(paper 002, with the erratum min(...,1)), or 'off'.");
+    prm.declare_entry("Passes",
+                      "momentum update, strain update",
+                      Patterns::MultipleSelection("momentum update|strain update"),
+                      "Where contact acts: on the velocities after the "
+                      "momentum update, and on the velocities the strain "
+                      "update uses (MUSL's remapped velocities).");
+    prm.declare_entry("Reported pairs",
+                      "all",
+                      Patterns::Anything(),
+                      "Body pairs whose total contact force goes to "
+                      "statistics.csv, e.g. '0-1, 1-2'; 'all' (every pair "
+                      "when there are at most 4 bodies) or 'none'.");
+    prm.leave_subsection();
+
     prm.enter_subsection("Output");
     prm.declare_entry("Particle output interval",
                       "0",
@@ -346,6 +411,11 @@ namespace sable::mpm
                                          dim == 2 ? 1 : 3),
                           "Initial rigid rotation about the centre, rad/s "
                           "(2D: one number, counter-clockwise).");
+        prm.declare_entry("Group",
+                          "0",
+                          Patterns::Integer(0),
+                          "Contact group; friction is set per pair of groups "
+                          "(Contact/Group friction).");
         prm.declare_entry("Lithostatic initial stress",
                           "false",
                           Patterns::Bool(),
@@ -508,6 +578,62 @@ namespace sable::mpm
       }
     prm.leave_subsection();
 
+    prm.enter_subsection("Contact");
+    {
+      ContactParameters &c = p.contact;
+      const std::string  model = prm.get("Model");
+      c.model = model == "bardenhagen 2000" ? ContactParameters::Model::bardenhagen_2000 :
+                model == "bardenhagen 2001" ? ContactParameters::Model::bardenhagen_2001 :
+                                              ContactParameters::Model::none;
+      c.friction = parse_friction(prm.get("Friction coefficient"), "Contact/Friction coefficient");
+      for (const auto &[pair, value] : split_map(prm.get("Group friction")))
+        {
+          const auto groups = Utilities::split_string_list(pair, '-');
+          check_input(groups.size() == 2,
+                      "Contact/Group friction", pair + ": " + value,
+                      "entries '<group>-<group>: <coefficient or stick>'");
+          const unsigned int a = Utilities::string_to_int(groups[0]);
+          const unsigned int b = Utilities::string_to_int(groups[1]);
+          c.group_friction[{std::min(a, b), std::max(a, b)}] =
+            parse_friction(value, "Contact/Group friction");
+        }
+      const std::string scaling = prm.get("Impulse scaling");
+      if (scaling == "off")
+        c.impulse_scaling = 0.;
+      else
+        {
+          c.impulse_scaling = to_double(scaling);
+          check_input(c.impulse_scaling >= 0.5 && c.impulse_scaling <= 1.,
+                      "Contact/Impulse scaling", scaling, "a number in [0.5, 1] or 'off'");
+        }
+      const std::string passes = prm.get("Passes");
+      c.on_momentum_update = passes.find("momentum update") != std::string::npos;
+      c.on_strain_update   = passes.find("strain update") != std::string::npos;
+      const std::string pairs = prm.get("Reported pairs");
+      if (pairs == "all")
+        {
+          if (n_bodies <= 4)
+            for (unsigned int a = 0; a < n_bodies; ++a)
+              for (unsigned int b = a + 1; b < n_bodies; ++b)
+                c.reported_pairs.emplace_back(a, b);
+        }
+      else if (pairs != "none")
+        for (const std::string &pair : Utilities::split_string_list(pairs, ','))
+          {
+            const auto bodies = Utilities::split_string_list(pair, '-');
+            check_input(bodies.size() == 2 &&
+                          Utilities::string_to_int(bodies[0]) < int(n_bodies) &&
+                          Utilities::string_to_int(bodies[1]) < int(n_bodies) &&
+                          bodies[0] != bodies[1],
+                        "Contact/Reported pairs", pair,
+                        "pairs '<body>-<body>' of two different bodies below Number of bodies");
+            const unsigned int a = Utilities::string_to_int(bodies[0]);
+            const unsigned int b = Utilities::string_to_int(bodies[1]);
+            c.reported_pairs.emplace_back(std::min(a, b), std::max(a, b));
+          }
+    }
+    prm.leave_subsection();
+
     prm.enter_subsection("Output");
     p.output_interval     = prm.get_double("Particle output interval");
     p.statistics_interval = prm.get_integer("Statistics interval");
@@ -541,6 +667,7 @@ namespace sable::mpm
           for (unsigned int d = 0; d < 3; ++d)
             body.angular_velocity[d] = omega[d];
         body.lithostatic_stress = prm.get_bool("Lithostatic initial stress");
+        body.group              = prm.get_integer("Group");
         const bool        is_box   = body.shape == BodyParameters<dim>::Shape::box;
         const std::string location_entry = is_box ? "Lower corner" : "Center";
         const std::string location = prm.get(location_entry);

@@ -102,6 +102,16 @@ namespace sable::mpm
         layout.n_history = std::max(layout.n_history, materials.back()->n_history());
       }
     has_gravity = parameters.gravity.norm() > 0.;
+    parallel    = Utilities::MPI::n_mpi_processes(communicator) > 1;
+    use_contact = parameters.contact.model != ContactParameters::Model::none &&
+                  parameters.bodies.size() > 1;
+    if (use_contact)
+      {
+        std::vector<unsigned int> groups;
+        for (const auto &body : parameters.bodies)
+          groups.push_back(body.group);
+        contact = std::make_unique<BardenhagenContact<dim>>(parameters.contact, groups);
+      }
 
     grid.setup();
     boundary_conditions.setup(grid);
@@ -127,6 +137,8 @@ namespace sable::mpm
         particle.set_id(particle.get_id() + offset);
     }
     particle_handler->update_cached_numbers();
+    if (use_contact && parallel)
+      particle_handler->exchange_ghost_particles(true);
     for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
       check_input(Utilities::MPI::sum(
                     static_cast<unsigned long long>(std::count_if(
@@ -175,6 +187,8 @@ namespace sable::mpm
     statistics_file = std::make_unique<StatisticsFile<dim>>(
       parameters.output_directory + "/statistics.csv",
       parameters.bodies.size(),
+      use_contact,
+      parameters.contact.reported_pairs,
       write && Utilities::MPI::this_mpi_process(communicator) == 0);
     statistics_file->write_row(0, 0., 0., 0., statistics);
 
@@ -271,9 +285,83 @@ namespace sable::mpm
 
   template <int dim>
   void
+  Simulator<dim>::find_contact_nodes()
+  {
+    body_fields.clear(grid.n_relevant_nodes());
+    std::vector<unsigned int> bodies;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (cell->is_artificial() || (!parallel && !cell->is_locally_owned()))
+          continue;
+        const auto particles = particle_handler->particles_in_cell(cell);
+        if (particles.begin() == particles.end())
+          continue;
+        bodies.clear();
+        for (const auto &particle : particles)
+          {
+            const unsigned int body =
+              static_cast<unsigned int>(particle.get_properties()[layout.body]);
+            if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
+              bodies.push_back(body);
+          }
+        const typename Grid<dim>::CellData &data = grid.cell_data(cell);
+        for (const unsigned int node : data.nodes)
+          for (const unsigned int body : bodies)
+            body_fields.add(node, body);
+      }
+    body_fields.allocate();
+  }
+
+  template <int dim>
+  void
   Simulator<dim>::particles_to_grid(const bool with_forces)
   {
     constexpr unsigned int n_components = 1 + 2 * dim;
+    if (use_contact)
+      {
+        if (with_forces)
+          find_contact_nodes();
+        else
+          body_fields.zero_momenta();
+      }
+    const bool with_traction =
+      parameters.contact.model == ContactParameters::Model::bardenhagen_2001;
+
+    // the share of one particle in the per-body fields of the contact
+    // nodes of its cell (owned and, under MPI, ghost particles)
+    const auto scatter_to_bodies = [&](const auto &                        particle,
+                                       const typename Grid<dim>::CellData &data,
+                                       const Q1Shape<dim> &                shape,
+                                       const Tensor<2, dim> &              volume_stress) {
+      const auto         props = particle.get_properties();
+      const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+      const double       mass  = props[layout.mass];
+      for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+        {
+          if (!body_fields.is_contact_node(data.nodes[v]))
+            continue;
+          auto &       record = body_fields.record(data.nodes[v], body);
+          const double weight = mass * shape.values[v];
+          record.mass += weight;
+          for (unsigned int d = 0; d < dim; ++d)
+            record.momentum[d] += weight * props[layout.velocity + d];
+          if (!with_forces)
+            continue;
+          record.force -= volume_stress * shape.gradients[v];
+          record.mass_gradient += mass * shape.gradients[v];
+          if (with_traction)
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                record.mass_stress[i][j] +=
+                  weight * props[layout.stress + (i == j ? i : (i + j == 1 ? 3u : (i + j == 2 ? 4u : 5u)))];
+        }
+    };
+    const auto cell_touches_contact = [&](const typename Grid<dim>::CellData &data) {
+      for (const unsigned int node : data.nodes)
+        if (body_fields.is_contact_node(node))
+          return true;
+      return false;
+    };
     nodal_data = 0.;
     nodal_data.zero_out_ghost_values();
     double *const grid_values = nodal_data.get_values();
@@ -309,6 +397,8 @@ namespace sable::mpm
                   for (unsigned int j = 0; j < dim; ++j)
                     volume_stress[i][j] = volume * props[layout.stress + stress_index(i, j)];
               }
+            if (use_contact && cell_touches_contact(data))
+              scatter_to_bodies(particle, data, shape, volume_stress);
             for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
               {
                 double *const node = grid_values + data.nodes[v] * n_components;
@@ -325,6 +415,35 @@ namespace sable::mpm
               }
           }
       }
+    // ghost particles complete the per-body fields at the nodes of
+    // locally owned cells
+    if (use_contact && parallel)
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          if (!cell->is_ghost())
+            continue;
+          const typename Grid<dim>::CellData &data = grid.cell_data(cell);
+          if (!cell_touches_contact(data))
+            continue;
+          for (const auto &particle : particle_handler->particles_in_cell(cell))
+            {
+              const auto props = particle.get_properties();
+              shape.evaluate(particle.get_reference_location(), data.inverse_h);
+              Tensor<2, dim> volume_stress;
+              if (with_forces)
+                {
+                  Tensor<2, dim> F;
+                  for (unsigned int i = 0; i < dim; ++i)
+                    for (unsigned int j = 0; j < dim; ++j)
+                      F[i][j] = props[layout.deformation + i * dim + j];
+                  const double volume = determinant(F) * props[layout.initial_volume];
+                  for (unsigned int i = 0; i < dim; ++i)
+                    for (unsigned int j = 0; j < dim; ++j)
+                      volume_stress[i][j] = volume * props[layout.stress + stress_index(i, j)];
+                }
+              scatter_to_bodies(particle, data, shape, volume_stress);
+            }
+        }
     nodal_data.compress(VectorOperation::add);
     nodal_data.update_ghost_values();
   }
@@ -356,16 +475,49 @@ namespace sable::mpm
               new_velocity[i * dim + d] = v;
           }
       }
-    if (boundary_conditions.empty())
-      return;
-    if (with_forces)
+    if (!boundary_conditions.empty())
+      {
+        if (with_forces)
       boundary_work += Utilities::MPI::sum(
         boundary_conditions.apply(new_velocity,
                                   nodal_mass,
                                   nodal_data.get_partitioner()->locally_owned_size() / n_components),
-        communicator);
-    else
-      boundary_conditions.apply_to_remapped(new_velocity, nodal_mass);
+            communicator);
+        else
+          boundary_conditions.apply_to_remapped(new_velocity, nodal_mass);
+      }
+    if (use_contact)
+      update_body_velocities(with_forces);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::update_body_velocities(const bool with_forces)
+  {
+    for (const unsigned int node : body_fields.get_contact_nodes())
+      {
+        const auto [begin, end] = body_fields.node_records(node);
+        for (auto *r = begin; r != end; ++r)
+          {
+            if (r->mass <= 0.)
+              continue;
+            const Tensor<1, dim> velocity = r->momentum / r->mass;
+            if (with_forces)
+              {
+                r->old_velocity = velocity;
+                r->new_velocity = velocity + time_step * (r->force / r->mass + parameters.gravity);
+              }
+            else
+              r->new_velocity = velocity;
+          }
+      }
+    const unsigned int n_owned_nodes =
+      nodal_data.get_partitioner()->locally_owned_size() / (1 + 2 * dim);
+    if (with_forces ? parameters.contact.on_momentum_update :
+                      parameters.contact.on_strain_update)
+      contact->apply(body_fields, grid.node_spacing(), time_step, n_owned_nodes, with_forces);
+    if (!boundary_conditions.empty())
+      boundary_conditions.apply_to_bodies(body_fields, !with_forces);
   }
 
   template <int dim>
@@ -389,13 +541,22 @@ namespace sable::mpm
         for (auto &particle : particles)
           {
             const auto props = particle.get_properties();
+            const unsigned int body = static_cast<unsigned int>(props[layout.body]);
             shape.evaluate(particle.get_reference_location(), data.inverse_h);
             Tensor<1, dim> velocity_change, grid_velocity;
             Tensor<2, dim> L;
             for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
               {
-                const double *const v_new = &new_velocity[data.nodes[v] * dim];
-                const double *const v_old = &old_velocity[data.nodes[v] * dim];
+                const unsigned int node  = data.nodes[v];
+                const double *     v_new = &new_velocity[node * dim];
+                const double *     v_old = &old_velocity[node * dim];
+                // each particle reads its own body's field
+                if (use_contact && body_fields.is_contact_node(node))
+                  {
+                    const auto &record = body_fields.record(node, body);
+                    v_new              = &record.new_velocity[0];
+                    v_old              = &record.old_velocity[0];
+                  }
                 const double        N     = shape.values[v];
                 for (unsigned int d = 0; d < dim; ++d)
                   {
@@ -409,7 +570,6 @@ namespace sable::mpm
                         L[d][e] += v_new[d] * shape.gradients[v][e];
                   }
               }
-            const unsigned int body = static_cast<unsigned int>(props[layout.body]);
             if (update_positions)
               {
                 double speed2 = 0;
@@ -504,6 +664,8 @@ namespace sable::mpm
     const unsigned long long before = particle_handler->n_global_particles();
     lost_particles = 0;
     particle_handler->sort_particles_into_subdomains_and_cells();
+    if (use_contact && parallel)
+      particle_handler->exchange_ghost_particles(true);
     const unsigned long long lost = Utilities::MPI::sum(lost_particles, communicator);
     if (lost > 0)
       {
@@ -546,6 +708,8 @@ namespace sable::mpm
         }
         {
           TimerOutput::Scope scope(timer, "particles to grid");
+          if (use_contact && parallel)
+            particle_handler->update_ghost_particles();
           particles_to_grid(false);
         }
         {
@@ -623,6 +787,12 @@ namespace sable::mpm
         s.body_velocity.push_back(v);
       }
     s.n_particles = particle_handler->n_global_particles();
+    if (use_contact)
+      {
+        s.contact_heat = Utilities::MPI::sum(contact->frictional_heat, communicator);
+        for (const auto &force : contact->pair_forces)
+          s.pair_forces.push_back(Utilities::MPI::sum(force, communicator));
+      }
     return s;
   }
 

@@ -18,9 +18,10 @@ namespace sable::mpm
   /**
    * The background grid: FE_Q<dim>(1) nodes on the user's distributed
    * triangulation of axis-aligned cells, with what the particle transfers
-   * need cached once per mesh change: for each locally owned cell its nodes
-   * as indices into the rank's locally relevant node range and its
-   * inverse extents.
+   * need cached once per mesh change: for each locally owned and ghost cell
+   * its nodes as indices into the rank's locally relevant node range and
+   * its inverse extents, and for each node the smallest adjacent cell size
+   * per direction.
    */
   template <int dim>
   class Grid
@@ -59,6 +60,13 @@ namespace sable::mpm
     std::shared_ptr<const Utilities::MPI::Partitioner>
     make_partitioner(const unsigned int n_components) const;
 
+    /// Per relevant node, the smallest extent per direction of its cells.
+    const std::vector<Tensor<1, dim>> &
+    node_spacing() const
+    {
+      return spacing;
+    }
+
     /// Smallest cell extent over the whole grid (all ranks).
     double
     minimum_cell_size() const
@@ -93,6 +101,7 @@ namespace sable::mpm
     DoFHandler<dim>        dof_handler;
     std::shared_ptr<const Utilities::MPI::Partitioner> node_partitioner;
     std::vector<CellData> cells;
+    std::vector<Tensor<1, dim>> spacing;
     double                min_cell_size = 0.;
   };
 } // namespace sable::mpm

@@ -54,6 +54,8 @@ namespace sable::mpm
     Tensor<1, 3> angular_velocity = {};
     /// Initialise σ = −p I with ∇p = ρ g, p = 0 at the body's top.
     bool lithostatic_stress = false;
+    /// Contact group: friction coefficients are set per pair of groups.
+    unsigned int group = 0;
 
     /// Axis-aligned bounding box of the shape.
     std::pair<Point<dim>, Point<dim>>
@@ -92,6 +94,38 @@ namespace sable::mpm
     std::vector<types::boundary_id> face_ids;
   };
 
+  /// Multi-body contact (SPEC Part A steps 3-7).
+  struct ContactParameters
+  {
+    enum class Model
+    {
+      none,             ///< one velocity field: no-slip, no separation
+      bardenhagen_2000, ///< act while bodies approach
+      bardenhagen_2001  ///< ... or while the normal traction is compressive
+    };
+    Model model = Model::none;
+    /// Coulomb coefficient for pairs of groups not listed below;
+    /// infinity means sticking contact.
+    double                                                 friction = 0.;
+    std::map<std::pair<unsigned int, unsigned int>, double> group_friction;
+    /// Impulse scaling factor gamma in [0.5, 1]; 0 switches scaling off.
+    double impulse_scaling = 0.5;
+    /// Apply contact to the velocities after the momentum update, and to
+    /// the velocities the strain update uses (MUSL's remapped velocities).
+    bool on_momentum_update = true;
+    bool on_strain_update   = true;
+    /// Pairs of bodies whose contact force goes to statistics.csv.
+    std::vector<std::pair<unsigned int, unsigned int>> reported_pairs;
+
+    double
+    friction_between(const unsigned int group_a, const unsigned int group_b) const
+    {
+      const auto it = group_friction.find({std::min(group_a, group_b),
+                                           std::max(group_a, group_b)});
+      return it == group_friction.end() ? friction : it->second;
+    }
+  };
+
   enum class UpdateScheme
   {
     usl,
@@ -112,6 +146,8 @@ namespace sable::mpm
     Tensor<1, dim> gravity = {};
 
     std::map<types::boundary_id, BoundaryParameters<dim>> boundaries;
+
+    ContactParameters contact;
 
     /// Directory of all output; empty: write nothing.
     std::string  output_directory    = "";

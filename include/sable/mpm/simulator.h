@@ -8,6 +8,8 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <sable/mpm/boundaries/boundary_conditions.h>
+#include <sable/mpm/contact/bardenhagen_contact.h>
+#include <sable/mpm/contact/body_fields.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/materials/material.h>
 #include <sable/mpm/parameters.h>
@@ -109,6 +111,12 @@ namespace sable::mpm
 
     void
     seed_body(const unsigned int body_index, types::particle_index &next_id);
+    /// Find the contact nodes of this step (bodies per node).
+    void
+    find_contact_nodes();
+    /// Per-body velocities at contact nodes, contact, boundary conditions.
+    void
+    update_body_velocities(const bool with_forces);
     double
     compute_time_step() const;
     /// Scatter mass, momentum and (if @p with_forces) internal forces.
@@ -153,6 +161,12 @@ namespace sable::mpm
     std::vector<double> old_velocity;
     std::vector<double> new_velocity;
     bool                has_gravity = false;
+
+    /// multi-body contact: only with a contact model and two or more bodies
+    bool                                     use_contact = false;
+    BodyFields<dim>                          body_fields;
+    std::unique_ptr<BardenhagenContact<dim>> contact;
+    bool                                     parallel = false;
 
     bool         initialized = false;
     double       time        = 0;

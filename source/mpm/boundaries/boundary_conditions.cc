@@ -54,6 +54,63 @@ namespace sable::mpm
   }
 
   template <int dim>
+  bool
+  BoundaryConditions<dim>::apply_one(const NodeConstraint &c,
+                                     double *              v,
+                                     const bool            remapped,
+                                     const bool            held) const
+  {
+    const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
+    switch (wall.type)
+      {
+        case BoundaryType::fixed:
+          for (unsigned int d = 0; d < dim; ++d)
+            v[d] = 0.;
+          return false;
+        case BoundaryType::slip:
+          v[c.direction] = 0.;
+          return false;
+        case BoundaryType::moving:
+          for (unsigned int d = 0; d < dim; ++d)
+            v[d] = wall.velocity[d];
+          return false;
+        case BoundaryType::friction:
+          {
+            if (remapped)
+              {
+                // hold the nodes the wall held, without friction again
+                if (held)
+                  v[c.direction] = 0.;
+                return held;
+              }
+            // SPEC step 6 with the wall as the other body: act only
+            // while the node approaches the wall
+            const double approach = c.sign * v[c.direction];
+            if (approach <= 0.)
+              return false;
+            double tangential_norm2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (d != c.direction)
+                tangential_norm2 += v[d] * v[d];
+            const double tangential = std::sqrt(tangential_norm2);
+            if (tangential > 0.)
+              {
+                const double reduction =
+                  std::min(wall.friction * approach, tangential) / tangential;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (d != c.direction)
+                    v[d] -= reduction * v[d];
+              }
+            v[c.direction] = 0.;
+            return true;
+          }
+        case BoundaryType::free:
+          return false;
+      }
+    return false;
+  }
+
+  template <int dim>
   double
   BoundaryConditions<dim>::apply(std::vector<double> &      velocity,
                                  const std::vector<double> &mass,
@@ -66,53 +123,12 @@ namespace sable::mpm
         const NodeConstraint &c = constraints[i];
         if (mass[c.node] <= 0.)
           continue;
-        double *const                  v = &velocity[c.node * dim];
+        double *const                  v    = &velocity[c.node * dim];
         const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
-        switch (wall.type)
-          {
-            case BoundaryType::fixed:
-              for (unsigned int d = 0; d < dim; ++d)
-                v[d] = 0.;
-              break;
-            case BoundaryType::slip:
-              v[c.direction] = 0.;
-              break;
-            case BoundaryType::moving:
-              {
-                if (c.node < n_owned_nodes)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    work += mass[c.node] * (wall.velocity[d] - v[d]) *
-                            wall.velocity[d];
-                for (unsigned int d = 0; d < dim; ++d)
-                  v[d] = wall.velocity[d];
-                break;
-              }
-            case BoundaryType::friction:
-              {
-                // SPEC step 6 with the wall as the other body: act only
-                // while the node approaches the wall
-                const double approach = c.sign * v[c.direction];
-                if (approach <= 0.)
-                  break;
-                in_contact[i] = true;
-                double tangential_norm2 = 0;
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (d != c.direction)
-                    tangential_norm2 += v[d] * v[d];
-                const double tangential = std::sqrt(tangential_norm2);
-                const double mu_eff =
-                  tangential > 0. ?
-                    std::min(wall.friction, tangential / approach) :
-                    0.;
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (d != c.direction)
-                    v[d] -= approach * mu_eff * v[d] / tangential;
-                v[c.direction] = 0.;
-                break;
-              }
-            case BoundaryType::free:
-              break;
-          }
+        if (wall.type == BoundaryType::moving && c.node < n_owned_nodes)
+          for (unsigned int d = 0; d < dim; ++d)
+            work += mass[c.node] * (wall.velocity[d] - v[d]) * wall.velocity[d];
+        in_contact[i] = apply_one(c, v, false, false);
       }
     return work;
   }
@@ -123,33 +139,23 @@ namespace sable::mpm
                                              const std::vector<double> &mass) const
   {
     for (unsigned int i = 0; i < constraints.size(); ++i)
-      {
-        const NodeConstraint &c = constraints[i];
-        if (mass[c.node] <= 0.)
-          continue;
-        double *const                  v    = &velocity[c.node * dim];
-        const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
-        switch (wall.type)
-          {
-            case BoundaryType::fixed:
-              for (unsigned int d = 0; d < dim; ++d)
-                v[d] = 0.;
-              break;
-            case BoundaryType::slip:
-              v[c.direction] = 0.;
-              break;
-            case BoundaryType::moving:
-              for (unsigned int d = 0; d < dim; ++d)
-                v[d] = wall.velocity[d];
-              break;
-            case BoundaryType::friction:
-              if (in_contact[i])
-                v[c.direction] = 0.;
-              break;
-            case BoundaryType::free:
-              break;
-          }
-      }
+      if (mass[constraints[i].node] > 0.)
+        apply_one(constraints[i], &velocity[constraints[i].node * dim], true, in_contact[i]);
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::apply_to_bodies(BodyFields<dim> &fields,
+                                           const bool       remapped) const
+  {
+    for (unsigned int i = 0; i < constraints.size(); ++i)
+      if (fields.is_contact_node(constraints[i].node))
+        {
+          const auto [begin, end] = fields.node_records(constraints[i].node);
+          for (auto *r = begin; r != end; ++r)
+            if (r->mass > 0.)
+              apply_one(constraints[i], &r->new_velocity[0], remapped, in_contact[i]);
+        }
   }
 
   template class BoundaryConditions<2>;

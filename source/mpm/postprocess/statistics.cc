@@ -5,9 +5,13 @@
 namespace sable::mpm
 {
   template <int dim>
-  StatisticsFile<dim>::StatisticsFile(const std::string &filename,
-                                      const unsigned int n_bodies,
-                                      const bool         write)
+  StatisticsFile<dim>::StatisticsFile(
+    const std::string &                                       filename,
+    const unsigned int                                        n_bodies,
+    const bool                                                with_contact,
+    const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+    const bool                                                write)
+    : with_contact(with_contact)
   {
     if (!write)
       return;
@@ -23,6 +27,13 @@ namespace sable::mpm
           *file << ",body" << b << '_' << axes[d];
         for (unsigned int d = 0; d < dim; ++d)
           *file << ",body" << b << "_v" << axes[d];
+      }
+    if (with_contact)
+      {
+        *file << ",contact_heat";
+        for (const auto &[a, b] : pairs)
+          for (unsigned int d = 0; d < dim; ++d)
+            *file << ",contact" << a << '_' << b << "_f" << axes[d];
       }
     *file << '\n' << std::setprecision(17);
   }
@@ -49,6 +60,13 @@ namespace sable::mpm
           *file << ',' << s.body_position[b][d];
         for (unsigned int d = 0; d < dim; ++d)
           *file << ',' << s.body_velocity[b][d];
+      }
+    if (with_contact)
+      {
+        *file << ',' << s.contact_heat;
+        for (const auto &force : s.pair_forces)
+          for (unsigned int d = 0; d < dim; ++d)
+            *file << ',' << force[d];
       }
     *file << '\n';
     file->flush();

@@ -1,6 +1,7 @@
 #ifndef sable_mpm_boundaries_boundary_conditions_h
 #define sable_mpm_boundaries_boundary_conditions_h
 
+#include <sable/mpm/contact/body_fields.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/parameters.h>
 
@@ -49,6 +50,11 @@ namespace sable::mpm
     apply_to_remapped(std::vector<double> &velocity,
                       const std::vector<double> &mass) const;
 
+    /// Apply the conditions to every body's velocity at contact nodes,
+    /// after apply() (@p remapped: as apply_to_remapped()).
+    void
+    apply_to_bodies(BodyFields<dim> &fields, const bool remapped) const;
+
     bool
     empty() const
     {
@@ -63,6 +69,15 @@ namespace sable::mpm
       double        sign;      ///< +1: normal along +axis, -1: along -axis
       types::boundary_id id;
     };
+
+    /// Apply constraint @p c to the velocity @p v; @p held: whether a
+    /// friction wall held this node in the momentum update (for remapped
+    /// velocities). Returns whether a friction wall acted.
+    bool
+    apply_one(const NodeConstraint &c,
+              double *              v,
+              const bool            remapped,
+              const bool            held) const;
 
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
     std::vector<NodeConstraint>                            constraints;

@@ -26,6 +26,10 @@ namespace sable::mpm
     std::vector<Point<dim>>     body_position;
     std::vector<Tensor<1, dim>> body_velocity;
     unsigned long long          n_particles = 0;
+    /// frictional work of contact so far, and the last contact force per
+    /// reported pair (empty without contact)
+    double                      contact_heat = 0;
+    std::vector<Tensor<1, dim>> pair_forces;
   };
 
   /**
@@ -39,6 +43,8 @@ namespace sable::mpm
   public:
     StatisticsFile(const std::string &filename,
                    const unsigned int n_bodies,
+                   const bool         with_contact,
+                   const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
                    const bool         write);
 
     void
@@ -50,6 +56,7 @@ namespace sable::mpm
 
   private:
     std::unique_ptr<std::ofstream> file;
+    bool                           with_contact = false;
   };
 } // namespace sable::mpm
 

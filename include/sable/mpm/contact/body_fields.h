@@ -1,0 +1,107 @@
+#ifndef sable_mpm_contact_body_fields_h
+#define sable_mpm_contact_body_fields_h
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/numbers.h>
+
+#include <vector>
+
+namespace sable::mpm
+{
+  using namespace dealii;
+
+  /**
+   * Per-body grid fields, kept only where they differ from the single
+   * total field: at contact nodes, the nodes whose support holds material
+   * points of two or more bodies. A node stores one record per body present
+   * there; nothing is allocated per body x node, and the table is rebuilt
+   * every step in O(particles) (DESIGN.md principle 3).
+   *
+   * Building: clear(), then add(node, body) for every (node, body) pair a
+   * cell's particles touch, then allocate(); records of a contact node are
+   * contiguous and sorted by body.
+   */
+  template <int dim>
+  class BodyFields
+  {
+  public:
+    struct Record
+    {
+      unsigned int   body;
+      double         mass;
+      Tensor<1, dim> momentum;
+      Tensor<1, dim> force;
+      /// sum_p m_p grad N: its direction is the body's outward normal
+      Tensor<1, dim> mass_gradient;
+      /// sum_p m_p sigma_p N (in-plane part), for the traction criterion
+      SymmetricTensor<2, dim> mass_stress;
+      Tensor<1, dim>          old_velocity;
+      Tensor<1, dim>          new_velocity;
+    };
+
+    static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
+
+    void
+    clear(const unsigned int n_nodes);
+
+    void
+    add(const unsigned int node, const unsigned int body)
+    {
+      unsigned int &first = first_body[node];
+      if (first == invalid)
+        first = body;
+      else if (first != body)
+        extra_bodies.emplace_back(node, body);
+    }
+
+    /// Create the zeroed records of all contact nodes.
+    void
+    allocate();
+
+    /// Zero mass, momentum and force of every record (keeps normals and
+    /// stresses), for a second particle-to-grid pass.
+    void
+    zero_momenta();
+
+    bool
+    is_contact_node(const unsigned int node) const
+    {
+      return first_record[node] != invalid;
+    }
+
+    /// The record of @p body at contact node @p node.
+    Record &
+    record(const unsigned int node, const unsigned int body)
+    {
+      Record *r = &records[first_record[node]];
+      while (r->body != body)
+        ++r;
+      return *r;
+    }
+
+    const std::vector<unsigned int> &
+    get_contact_nodes() const
+    {
+      return contact_nodes;
+    }
+
+    /// Records of contact node @p node: [begin, end).
+    std::pair<Record *, Record *>
+    node_records(const unsigned int node)
+    {
+      Record *const begin = &records[first_record[node]];
+      return {begin, begin + n_records[node]};
+    }
+
+  private:
+    std::vector<unsigned int>                            first_body;
+    std::vector<std::pair<unsigned int, unsigned int>>   extra_bodies;
+    std::vector<unsigned int>                            first_record;
+    std::vector<unsigned int>                            n_records;
+    std::vector<unsigned int>                            contact_nodes;
+    std::vector<Record>                                  records;
+  };
+} // namespace sable::mpm
+
+#endif

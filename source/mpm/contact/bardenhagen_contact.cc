@@ -1,0 +1,207 @@
+#include <sable/mpm/contact/bardenhagen_contact.h>
+
+#include <cmath>
+#include <limits>
+
+namespace sable::mpm
+{
+  template <int dim>
+  BardenhagenContact<dim>::BardenhagenContact(
+    const ContactParameters &        parameters,
+    const std::vector<unsigned int> &body_groups)
+    : parameters(parameters)
+    , body_groups(body_groups)
+    , use_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
+  {
+    const unsigned int n = body_groups.size();
+    pair_forces.assign(parameters.reported_pairs.size(), Tensor<1, dim>());
+    // a dense table is fine for the few bodies whose pairs are reported;
+    // with many bodies and no reported pairs it stays empty
+    if (!parameters.reported_pairs.empty())
+      {
+        reported_pair_index.assign(n * n, BodyFields<dim>::invalid);
+        for (unsigned int i = 0; i < parameters.reported_pairs.size(); ++i)
+          {
+            const auto [a, b] = parameters.reported_pairs[i];
+            reported_pair_index[a * n + b] = i;
+          }
+      }
+  }
+
+  template <int dim>
+  unsigned int
+  BardenhagenContact<dim>::pair_index(const unsigned int a,
+                                      const unsigned int b) const
+  {
+    if (reported_pair_index.empty())
+      return BodyFields<dim>::invalid;
+    return reported_pair_index[a * body_groups.size() + b];
+  }
+
+  template <int dim>
+  void
+  BardenhagenContact<dim>::apply(BodyFields<dim> &                  fields,
+                                 const std::vector<Tensor<1, dim>> &spacing,
+                                 const double                       dt,
+                                 const unsigned int                 n_owned_nodes,
+                                 const bool                         record_forces)
+  {
+    using Record = typename BodyFields<dim>::Record;
+    if (record_forces)
+      for (auto &f : pair_forces)
+        f = 0;
+
+    // per-body scratch of one node (nodes rarely hold more than a few bodies)
+    std::vector<Tensor<1, dim>> normal, change;
+    std::vector<double>         tangential_speed, tangential_change;
+
+    for (const unsigned int node : fields.get_contact_nodes())
+      {
+        const auto [begin, end] = fields.node_records(node);
+        const unsigned int n    = end - begin;
+        normal.resize(n);
+        change.resize(n);
+        tangential_speed.resize(n);
+        tangential_change.resize(n);
+
+        double         total_mass = 0;
+        Tensor<1, dim> total_momentum;
+        for (const Record *r = begin; r != end; ++r)
+          {
+            total_mass += r->mass;
+            total_momentum += r->mass * r->new_velocity;
+          }
+        if (total_mass <= 0)
+          continue;
+        const Tensor<1, dim> centre_of_mass_velocity = total_momentum / total_mass;
+
+        // outward unit normals: sum_p m_p grad N_i(x_p) points from the
+        // body's particles towards the node, out of the body (it is minus
+        // the gradient of the body's mass density)
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            const double norm = begin[a].mass_gradient.norm();
+            normal[a] = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
+          }
+        if (n == 2)
+          {
+            Tensor<1, dim> common = normal[0] - normal[1];
+            const double   norm   = common.norm();
+            if (norm == 0)
+              continue;
+            common /= norm;
+            normal[0] = common;
+            normal[1] = -common;
+          }
+        else
+          {
+            std::vector<Tensor<1, dim>> own(normal);
+            for (unsigned int a = 0; a < n; ++a)
+              {
+                Tensor<1, dim> others;
+                for (unsigned int b = 0; b < n; ++b)
+                  if (b != a)
+                    others += begin[b].mass * own[b];
+                others /= std::max(total_mass - begin[a].mass,
+                                   std::numeric_limits<double>::min());
+                Tensor<1, dim> combined = own[a] - others;
+                const double   norm     = combined.norm();
+                normal[a] = norm > 0 ? combined / norm : Tensor<1, dim>();
+              }
+          }
+
+        // release logic: one decision per node at two-body nodes, so that
+        // both bodies change together and momentum is kept
+        const auto traction = [&](const unsigned int a) {
+          return begin[a].mass > 0 ?
+                   normal[a] * (begin[a].mass_stress * normal[a]) / begin[a].mass :
+                   0.;
+        };
+        bool node_acts = false;
+        if (n == 2)
+          {
+            const double approach =
+              (begin[0].new_velocity - centre_of_mass_velocity) * normal[0];
+            double mean_traction = 0;
+            if (use_traction)
+              mean_traction = (begin[0].mass * traction(0) + begin[1].mass * traction(1)) /
+                              total_mass;
+            node_acts = approach > 0 || mean_traction < 0;
+          }
+
+        double rate = 0;
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            const Record &r = begin[a];
+            change[a]           = 0;
+            tangential_speed[a] = tangential_change[a] = 0;
+            const Tensor<1, dim> dv = r.new_velocity - centre_of_mass_velocity;
+            const double         dv_n = dv * normal[a];
+            const bool acts = n == 2 ? node_acts :
+                                       (dv_n > 0 || (use_traction && traction(a) < 0));
+            if (!acts || r.mass <= 0)
+              continue;
+            // friction with the heaviest other body at the node
+            unsigned int other = a == 0 ? 1 : 0;
+            for (unsigned int b = 0; b < n; ++b)
+              if (b != a && begin[b].mass > begin[other].mass)
+                other = b;
+            const double mu = parameters.friction_between(body_groups[r.body],
+                                                          body_groups[begin[other].body]);
+            const Tensor<1, dim> dv_t = dv - dv_n * normal[a];
+            const double         speed_t = dv_t.norm();
+            tangential_speed[a] = speed_t;
+            if (std::isinf(mu))
+              {
+                change[a]            = -dv; // stick: move with the centre of mass
+                tangential_change[a] = speed_t;
+              }
+            else
+              {
+                const double tau = std::min(mu * std::abs(dv_n), speed_t);
+                change[a]        = -dv_n * normal[a];
+                if (speed_t > 0)
+                  change[a] -= (tau / speed_t) * dv_t;
+                tangential_change[a] = tau;
+              }
+            // the cell-collapse rate of paper 002 section 2.2
+            const double weight = std::max(r.mass / std::max(total_mass - r.mass,
+                                                             std::numeric_limits<double>::min()),
+                                           1.);
+            for (unsigned int d = 0; d < dim; ++d)
+              rate = std::max(rate, weight * std::abs(change[a][d]) / spacing[node][d]);
+          }
+
+        double scale = 1;
+        if (parameters.impulse_scaling > 0 && rate * dt > parameters.impulse_scaling)
+          scale = parameters.impulse_scaling / (rate * dt);
+
+        const bool owned = node < n_owned_nodes;
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            Record &r = begin[a];
+            r.new_velocity += scale * change[a];
+            if (!owned)
+              continue;
+            // kinetic energy the tangential change removes in the
+            // centre-of-mass frame: m tau (|dv_t| - tau/2)
+            const double tau = scale * tangential_change[a];
+            frictional_heat += r.mass * tau * (tangential_speed[a] - 0.5 * tau);
+            if (record_forces && n >= 2)
+              for (unsigned int b = 0; b < n; ++b)
+                if (b != a)
+                  {
+                    const unsigned int index = pair_index(r.body, begin[b].body);
+                    if (index == BodyFields<dim>::invalid)
+                      continue;
+                    // split among the other bodies by their mass
+                    const double share = begin[b].mass / (total_mass - r.mass);
+                    pair_forces[index] += share * r.mass * scale * change[a] / dt;
+                  }
+          }
+      }
+  }
+
+  template class BardenhagenContact<2>;
+  template class BardenhagenContact<3>;
+} // namespace sable::mpm
