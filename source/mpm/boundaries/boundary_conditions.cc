@@ -54,11 +54,11 @@ namespace sable::mpm
   }
 
   template <int dim>
-  bool
+  double
   BoundaryConditions<dim>::apply_one(const NodeConstraint &c,
                                      double *              v,
                                      const bool            remapped,
-                                     const bool            held) const
+                                     const double          held) const
   {
     const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
     switch (wall.type)
@@ -66,48 +66,52 @@ namespace sable::mpm
         case BoundaryType::fixed:
           for (unsigned int d = 0; d < dim; ++d)
             v[d] = 0.;
-          return false;
+          return -1.;
         case BoundaryType::slip:
           v[c.direction] = 0.;
-          return false;
+          return -1.;
         case BoundaryType::moving:
           for (unsigned int d = 0; d < dim; ++d)
             v[d] = wall.velocity[d];
-          return false;
+          return -1.;
         case BoundaryType::friction:
           {
             if (remapped)
               {
-                // hold the nodes the wall held, without friction again
-                if (held)
-                  v[c.direction] = 0.;
+                if (held >= 0.)
+                  {
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (d != c.direction)
+                        v[d] -= held * v[d];
+                    v[c.direction] = 0.;
+                  }
                 return held;
               }
             // SPEC step 6 with the wall as the other body: act only
             // while the node approaches the wall
             const double approach = c.sign * v[c.direction];
             if (approach <= 0.)
-              return false;
+              return -1.;
             double tangential_norm2 = 0;
             for (unsigned int d = 0; d < dim; ++d)
               if (d != c.direction)
                 tangential_norm2 += v[d] * v[d];
             const double tangential = std::sqrt(tangential_norm2);
+            double       reduction  = 1.;
             if (tangential > 0.)
               {
-                const double reduction =
-                  std::min(wall.friction * approach, tangential) / tangential;
+                reduction = std::min(wall.friction * approach, tangential) / tangential;
                 for (unsigned int d = 0; d < dim; ++d)
                   if (d != c.direction)
                     v[d] -= reduction * v[d];
               }
             v[c.direction] = 0.;
-            return true;
+            return reduction;
           }
         case BoundaryType::free:
-          return false;
+          return -1.;
       }
-    return false;
+    return -1.;
   }
 
   template <int dim>
@@ -117,7 +121,7 @@ namespace sable::mpm
                                  const unsigned int         n_owned_nodes)
   {
     double work = 0;
-    in_contact.assign(constraints.size(), false);
+    in_contact.assign(constraints.size(), -1.);
     for (unsigned int i = 0; i < constraints.size(); ++i)
       {
         const NodeConstraint &c = constraints[i];
@@ -128,7 +132,7 @@ namespace sable::mpm
         if (wall.type == BoundaryType::moving && c.node < n_owned_nodes)
           for (unsigned int d = 0; d < dim; ++d)
             work += mass[c.node] * (wall.velocity[d] - v[d]) * wall.velocity[d];
-        in_contact[i] = apply_one(c, v, false, false);
+        in_contact[i] = apply_one(c, v, false, -1.);
       }
     return work;
   }

@@ -42,9 +42,10 @@ namespace sable::mpm
 
     /**
      * Apply the conditions to velocities remapped from the particles (MUSL's
-     * second grid pass). A friction wall holds the normal velocity of
-     * exactly the nodes it held in apply(), without new friction, so that
-     * the strain rate sees the motion the particles were given.
+     * second grid pass). A friction wall holds exactly the nodes it held
+     * in apply(), removing the normal velocity and the same fraction of the
+     * tangential velocity (a sticking node sticks), so that the strain
+     * rate sees the contact state the particles were given.
      */
     void
     apply_to_remapped(std::vector<double> &velocity,
@@ -70,19 +71,21 @@ namespace sable::mpm
       types::boundary_id id;
     };
 
-    /// Apply constraint @p c to the velocity @p v; @p held: whether a
-    /// friction wall held this node in the momentum update (for remapped
-    /// velocities). Returns whether a friction wall acted.
-    bool
+    /// Apply constraint @p c to the velocity @p v. For friction walls,
+    /// returns the fraction of the tangential velocity removed (1: stick),
+    /// or -1 if the wall did not act; with @p remapped, @p held is that
+    /// fraction from the momentum update, applied again.
+    double
     apply_one(const NodeConstraint &c,
               double *              v,
               const bool            remapped,
-              const bool            held) const;
+              const double          held) const;
 
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
     std::vector<NodeConstraint>                            constraints;
-    /// per constraint: did the friction wall act in the last apply()?
-    std::vector<bool> in_contact;
+    /// per constraint: fraction of tangential velocity a friction wall
+    /// removed in the last apply(), -1 where it did not act
+    std::vector<double> in_contact;
   };
 } // namespace sable::mpm
 
