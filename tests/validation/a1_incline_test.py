@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""Validation scene A1 in small: an elastic disk on an incline (paper 000,
+Figs. 2-4) at 8 cells per diameter (cell 0.25 R), 0.5 s, one slipping and one
+rolling case, against the rigid-disk solution from rest
+    x - x0 = 1/2 a t^2,  a = g (sin(theta) - mu cos(theta))  if tan(theta) > 3 mu,
+                         a = 2/3 g sin(theta)                 otherwise.
+The scenes are those of prm/a1_mu03_theta60.prm and prm/a1_mu09_theta60.prm.
+
+Tolerances come from runs of exactly these scenes (measured at 0.5 s; the
+full runs to 1 s are in doc/validation_a1.md):
+- slipping (theta = pi/3, mu = 0.3): x error +0.59% of the rigid displacement,
+  v error +0.24%, largest |x error| over time 0.0051 m. Tolerances: 2% on x
+  and v (3x the x error), 0.015 m on the largest x error (3x). A friction
+  coefficient off by 10% changes a by 2.1%, frictionless sliding by +21%.
+  The disk's spin omega R / v is printed only: it is about 0 (rigid 0.42),
+  the known flat-contact behaviour at this resolution.
+- rolling (theta = pi/3, mu = 0.9): the deformable disk lags; x error -18.4%,
+  v error -6.6% (between -28% and -7% over 0.1-0.5 s), omega R / v = 0.62.
+  Tolerances: x error in [-30%, +10%], |v error| <= 40%, omega R / v >= 0.45.
+  A disk sliding without friction would be at x +50%, v +50%; one sliding as
+  a Coulomb block with mu = 0.9 (no rolling) at x -28% with omega = 0; one
+  sticking at -100%."""
+import base64
+import glob
+import math
+import re
+import os
+import struct
+import sys
+import zlib
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "mpm"))
+from scene_test import WORK, check, finish, run  # noqa: E402
+
+G, R, END = 9.8, 0.5, 0.5
+CELLS_PER_DIAMETER = 8
+
+
+def scene(name, theta, mu):
+    h = 2 * R / CELLS_PER_DIAMETER
+    return run(name, {
+        "Dimension": 2,
+        "Gravity": f"{G * math.sin(theta)!r}, {-G * math.cos(theta)!r}",
+        "Time/End time": END,
+        "Time/CFL number": 0.5,
+        "Grid/Lower corner": "0, 0", "Grid/Upper corner": "6, 1.5",
+        "Grid/Subdivisions": f"{round(6 / h)}, {round(1.5 / h)}",
+        "Boundary conditions/Types": "1: slip, 2: friction",
+        "Boundary conditions/Friction coefficients": f"2: {mu}",
+        "Solver/Update scheme": "MUSL",
+        "Output/Particle output interval": END,
+    }, [{"Shape": "disk", "Center": f"1.0, {R}", "Radius": R,
+         "Particles per cell direction": 3, "Material": "linear elastic",
+         "Density": 3000, "Bulk modulus": 10e6, "Shear modulus": 2.5e6,
+         "Lithostatic initial stress": "true"}])[2]
+
+
+def vtu_arrays(path, names):
+    """Float32 arrays of a deal.II particle .vtu (zlib-compressed, base64)."""
+    text = open(path).read()
+    arrays = {}
+    for match in re.finditer(r'<DataArray type="Float32"(?: Name="(\w+)")?(?: NumberOfComponents="(\d+)")?'
+                             r'[^>]*>\s*([^<]*)<', text):
+        name = match.group(1) or "points"
+        if name not in names:
+            continue
+        data = match.group(3).strip()
+        n_blocks = struct.unpack("<I", base64.b64decode(data[:8])[:4])[0]
+        header_chars = (4 * (3 + n_blocks) + 2) // 3 * 4
+        sizes = struct.unpack(f"<{3 + n_blocks}I", base64.b64decode(data[:header_chars]))[3:]
+        compressed, raw, offset = base64.b64decode(data[header_chars:]), b"", 0
+        for size in sizes:
+            raw += zlib.decompress(compressed[offset:offset + size])
+            offset += size
+        values = struct.unpack(f"<{len(raw) // 4}f", raw)
+        n = int(match.group(2) or 1)
+        arrays[name] = [values[i:i + n] for i in range(0, len(values), n)]
+    return arrays
+
+
+def rolling_ratio(name):
+    """omega R / v_cm of the disk at the end, omega = L / I about the centre of
+    mass from the particles (1 for rolling without slip, 0 for a sliding block)."""
+    path = sorted(glob.glob(os.path.join(WORK, name, "output", "particles_*.0.vtu")))[-1]
+    arrays = vtu_arrays(path, ("points", "velocity", "mass"))
+    m = [q[0] for q in arrays["mass"]]
+    total = sum(m)
+    c = [sum(mi * p[d] for mi, p in zip(m, arrays["points"])) / total for d in (0, 1)]
+    v = [sum(mi * u[d] for mi, u in zip(m, arrays["velocity"])) / total for d in (0, 1)]
+    L = sum(mi * ((p[0] - c[0]) * (u[1] - v[1]) - (p[1] - c[1]) * (u[0] - v[0]))
+            for mi, p, u in zip(m, arrays["points"], arrays["velocity"]))
+    inertia = sum(mi * ((p[0] - c[0]) ** 2 + (p[1] - c[1]) ** 2) for mi, p in zip(m, arrays["points"]))
+    return -L / inertia * R / v[0]
+
+
+def errors(rows, a):
+    x0 = rows[0]["body0_x"]
+    last = rows[-1]
+    x_rigid, v_rigid = 0.5 * a * last["time"] ** 2, a * last["time"]
+    ex = (last["body0_x"] - x0 - x_rigid) / x_rigid
+    ev = (last["body0_vx"] - v_rigid) / v_rigid
+    ex_max = max(abs(r["body0_x"] - x0 - 0.5 * a * r["time"] ** 2) for r in rows)
+    print(f"  t = {last['time']:g} s: x - x0 = {last['body0_x'] - x0:.5f} m (rigid {x_rigid:.5f}), "
+          f"v = {last['body0_vx']:.5f} m/s (rigid {v_rigid:.5f}), max |x error| {ex_max:.5f} m")
+    return ex, ev, ex_max
+
+
+# slips: tan(pi/3) = 1.73 > 3 * 0.3
+theta, mu = math.pi / 3, 0.3
+a = G * (math.sin(theta) - mu * math.cos(theta))
+rows = scene("slip", theta, mu)
+check("slipping run reaches the end time", abs(rows[-1]["time"] - END) < 1e-12)
+ex, ev, ex_max = errors(rows, a)
+check("slipping: x error at the end within 2% of the rigid displacement", abs(ex) <= 0.02, f"{ex:+.4f}")
+check("slipping: v error at the end within 2% of the rigid velocity", abs(ev) <= 0.02, f"{ev:+.4f}")
+check("slipping: max |x error| over time below 0.015 m", ex_max <= 0.015, f"{ex_max:.5f} m")
+ratio = rolling_ratio("slip")
+print(f"  omega R / v = {ratio:.4f}, rigid {2 * mu * math.cos(theta) / (math.sin(theta) - mu * math.cos(theta)):.4f}")
+
+# rolls: tan(pi/3) = 1.73 <= 3 * 0.9
+theta, mu = math.pi / 3, 0.9
+a = 2.0 / 3.0 * G * math.sin(theta)
+rows = scene("roll", theta, mu)
+check("rolling run reaches the end time", abs(rows[-1]["time"] - END) < 1e-12)
+ex, ev, ex_max = errors(rows, a)
+check("rolling: x error at the end in [-30%, +10%] of the rigid displacement", -0.30 <= ex <= 0.10, f"{ex:+.4f}")
+check("rolling: v error at the end within 40% of the rigid velocity", abs(ev) <= 0.40, f"{ev:+.4f}")
+ratio = rolling_ratio("roll")
+check("rolling: the disk rolls, omega R / v >= 0.45", ratio >= 0.45, f"{ratio:.4f} (rigid 1)")
+finish()
