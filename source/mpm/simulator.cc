@@ -139,18 +139,18 @@ namespace sable::mpm
     particle_handler->update_cached_numbers();
     if (use_contact && parallel)
       particle_handler->exchange_ghost_particles(true);
-    for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
-      check_input(Utilities::MPI::sum(
-                    static_cast<unsigned long long>(std::count_if(
-                      particle_handler->begin(), particle_handler->end(),
-                      [&](const auto &p) {
-                        return static_cast<unsigned int>(p.get_properties()[layout.body]) == b;
-                      })),
-                    communicator) > 0,
-                  "Body " + std::to_string(b),
-                  "(no material point)",
-                  "a body large enough to hold at least one material point "
-                  "on this grid");
+    {
+      std::vector<unsigned long long> per_body(parameters.bodies.size(), 0);
+      for (const auto &particle : *particle_handler)
+        ++per_body[static_cast<unsigned int>(particle.get_properties()[layout.body])];
+      Utilities::MPI::sum(per_body, communicator, per_body);
+      for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
+        check_input(per_body[b] > 0,
+                    "Body " + std::to_string(b),
+                    "(no material point)",
+                    "a body large enough to hold at least one material point "
+                    "on this grid");
+    }
 
     const unsigned int n_components = 1 + 2 * dim;
     nodal_data.reinit(grid.make_partitioner(n_components));
