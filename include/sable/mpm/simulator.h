@@ -99,6 +99,13 @@ namespace sable::mpm
     Statistics<dim>
     compute_statistics() const;
 
+    /// The contact kernel (nullptr without multi-body contact).
+    const BardenhagenContact<dim> *
+    get_contact() const
+    {
+      return contact.get();
+    }
+
     /// Total work done by moving walls so far.
     double
     get_boundary_work() const

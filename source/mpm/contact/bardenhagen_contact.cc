@@ -176,13 +176,16 @@ namespace sable::mpm
         if (parameters.impulse_scaling > 0 && rate * dt > parameters.impulse_scaling)
           scale = parameters.impulse_scaling / (rate * dt);
 
-        const bool owned = node < n_owned_nodes;
+        const bool     owned = node < n_owned_nodes;
+        Tensor<1, dim> defect;
         for (unsigned int a = 0; a < n; ++a)
           {
             Record &r = begin[a];
             r.new_velocity += scale * change[a];
             if (!owned)
               continue;
+            defect += r.mass * scale * change[a];
+            momentum_correction += r.mass * scale * change[a].norm();
             // kinetic energy the tangential change removes in the
             // centre-of-mass frame: m tau (|dv_t| - tau/2)
             const double tau = scale * tangential_change[a];
@@ -199,6 +202,8 @@ namespace sable::mpm
                     pair_forces[index] += share * r.mass * scale * change[a] / dt;
                   }
           }
+        if (owned)
+          momentum_defect += defect.norm();
       }
   }
 

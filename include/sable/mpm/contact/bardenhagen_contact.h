@@ -49,6 +49,12 @@ namespace sable::mpm
 
     /// Frictional work converted to heat so far (this rank's nodes).
     double frictional_heat = 0;
+    /// Momentum the corrections did not conserve, sum over nodes of
+    /// |sum_a m_a dv_a| (non-zero only at nodes with three or more bodies),
+    /// and the size of the corrections, sum over nodes and bodies of
+    /// |m_a dv_a|, both so far (this rank's nodes).
+    double momentum_defect     = 0;
+    double momentum_correction = 0;
     /// Contact force on the first body of each reported pair from the
     /// second, in the last momentum-update pass (this rank's nodes).
     std::vector<Tensor<1, dim>> pair_forces;
