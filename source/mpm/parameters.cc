@@ -330,6 +330,16 @@ namespace sable::mpm
                       "bardenhagen 2000: a velocity field per body, Coulomb "
                       "friction while bodies approach. bardenhagen 2001: also "
                       "while the normal traction is compressive.");
+    prm.declare_entry("Normals",
+                      "mass weighted",
+                      Patterns::Selection("mass weighted|average"),
+                      "How the bodies' normals at a node are made collinear "
+                      "(so contact conserves momentum): 'average' is the "
+                      "papers' n = (n1 - n2)/|n1 - n2| of the unit mass-"
+                      "gradient directions; 'mass weighted' weights each "
+                      "direction by the body's nodal mass, so that a large "
+                      "flat body's normal is not tilted by a small body's "
+                      "corner (see doc/mpm.md).");
     prm.declare_entry("Friction coefficient",
                       "0",
                       Patterns::Anything(),
@@ -585,6 +595,7 @@ namespace sable::mpm
       c.model = model == "bardenhagen 2000" ? ContactParameters::Model::bardenhagen_2000 :
                 model == "bardenhagen 2001" ? ContactParameters::Model::bardenhagen_2001 :
                                               ContactParameters::Model::none;
+      c.mass_weighted_normals = prm.get("Normals") == "mass weighted";
       c.friction = parse_friction(prm.get("Friction coefficient"), "Contact/Friction coefficient");
       for (const auto &[pair, value] : split_map(prm.get("Group friction")))
         {

@@ -104,6 +104,10 @@ namespace sable::mpm
       bardenhagen_2001  ///< ... or while the normal traction is compressive
     };
     Model model = Model::none;
+    /// How a node's body normals are made collinear: from the bodies'
+    /// mass-gradient directions weighted by their nodal masses (the
+    /// default), or with equal weights, n = (n1 - n2)/|n1 - n2| (papers).
+    bool mass_weighted_normals = true;
     /// Coulomb coefficient for pairs of groups not listed below;
     /// infinity means sticking contact.
     double                                                 friction = 0.;

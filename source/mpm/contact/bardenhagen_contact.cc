@@ -83,9 +83,13 @@ namespace sable::mpm
             const double norm = begin[a].mass_gradient.norm();
             normal[a] = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
           }
+        // weights of the bodies' directions when they are made collinear
+        const auto weight = [&](const unsigned int a) {
+          return parameters.mass_weighted_normals ? begin[a].mass : 1.;
+        };
         if (n == 2)
           {
-            Tensor<1, dim> common = normal[0] - normal[1];
+            Tensor<1, dim> common = weight(0) * normal[0] - weight(1) * normal[1];
             const double   norm   = common.norm();
             if (norm == 0)
               continue;
@@ -98,13 +102,19 @@ namespace sable::mpm
             std::vector<Tensor<1, dim>> own(normal);
             for (unsigned int a = 0; a < n; ++a)
               {
+                // minus the mass-weighted mean of the others' directions
                 Tensor<1, dim> others;
                 for (unsigned int b = 0; b < n; ++b)
                   if (b != a)
                     others += begin[b].mass * own[b];
                 others /= std::max(total_mass - begin[a].mass,
                                    std::numeric_limits<double>::min());
-                Tensor<1, dim> combined = own[a] - others;
+                const double   own_weight =
+                  parameters.mass_weighted_normals ?
+                    begin[a].mass / std::max(total_mass - begin[a].mass,
+                                             std::numeric_limits<double>::min()) :
+                    1.;
+                Tensor<1, dim> combined = own_weight * own[a] - others;
                 const double   norm     = combined.norm();
                 normal[a] = norm > 0 ? combined / norm : Tensor<1, dim>();
               }
@@ -158,7 +168,10 @@ namespace sable::mpm
               }
             else
               {
-                const double tau = std::min(mu * std::abs(dv_n), speed_t);
+                // friction is bounded by the compressive normal impulse:
+                // when the 2001 release holds separating bodies together
+                // (dv_n < 0) that impulse pulls, and gives no friction
+                const double tau = std::min(mu * std::max(dv_n, 0.), speed_t);
                 change[a]        = -dv_n * normal[a];
                 if (speed_t > 0)
                   change[a] -= (tau / speed_t) * dv_t;

@@ -14,7 +14,8 @@ namespace sable::mpm
    * velocities at contact nodes (BodyFields::Record::new_velocity):
    *
    * - normals from the mass gradients; at a two-body node one common normal
-   *   n = (n1 - n2)/|n1 - n2| so that contact conserves momentum exactly;
+   *   n = (w1 n1 - w2 n2)/|w1 n1 - w2 n2| so that contact conserves
+   *   momentum exactly, with w the nodal masses (default) or 1 (papers);
    *   at nodes with three or more bodies each body keeps its own normal,
    *   made to point away from the mass-weighted mean of the others', and is
    *   corrected against the all-body centre of mass (this leaves a small
