@@ -733,8 +733,11 @@ namespace sable::mpm
   {
     const unsigned int n_bodies = parameters.bodies.size();
     // kinetic, strain, gravity, momentum (dim), per body: mass, m x, m v
-    const unsigned int  n_values = 3 + dim + n_bodies * (1 + 2 * dim);
-    std::vector<double> sums(n_values, 0.);
+    // per body: mass, m x (dim), m v (dim), angular momentum about the
+    // origin (3), inertia tensor about the origin (9)
+    constexpr unsigned int per_body = 1 + 2 * dim + 3 + 9;
+    const unsigned int     n_values = 3 + dim + n_bodies * per_body;
+    std::vector<double>    sums(n_values, 0.);
     for (const auto &particle : *particle_handler)
       {
         const auto         props = particle.get_properties();
@@ -755,14 +758,23 @@ namespace sable::mpm
         sums[1] += props[layout.initial_volume] *
                    materials[body]->strain_energy_density(stress, embed<dim>(F, 1.));
         sums[2] -= mass * (parameters.gravity * x);
-        double *const body_sums = &sums[3 + dim + body * (1 + 2 * dim)];
+        double *const body_sums = &sums[3 + dim + body * per_body];
         body_sums[0] += mass;
+        Tensor<1, 3> r, v;
         for (unsigned int d = 0; d < dim; ++d)
           {
             sums[3 + d] += mass * props[layout.velocity + d];
             body_sums[1 + d] += mass * x[d];
             body_sums[1 + dim + d] += mass * props[layout.velocity + d];
+            r[d] = x[d];
+            v[d] = props[layout.velocity + d];
           }
+        const Tensor<1, 3> angular = mass * cross_product_3d(r, v);
+        for (unsigned int d = 0; d < 3; ++d)
+          body_sums[1 + 2 * dim + d] += angular[d];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            body_sums[4 + 2 * dim + 3 * i + j] += mass * ((i == j ? r * r : 0.) - r[i] * r[j]);
       }
     Utilities::MPI::sum(sums, communicator, sums);
 
@@ -774,17 +786,36 @@ namespace sable::mpm
       s.momentum[d] = sums[3 + d];
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        const double *const body_sums = &sums[3 + dim + b * (1 + 2 * dim)];
-        s.body_mass.push_back(body_sums[0]);
+        const double *const body_sums = &sums[3 + dim + b * per_body];
+        const double        mass      = body_sums[0];
+        s.body_mass.push_back(mass);
         Point<dim>     x;
         Tensor<1, dim> v;
+        Tensor<1, 3>   x3, v3, angular;
+        Tensor<2, 3>   inertia;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            x[d] = body_sums[1 + d] / body_sums[0];
-            v[d] = body_sums[1 + dim + d] / body_sums[0];
+            x[d] = x3[d] = body_sums[1 + d] / mass;
+            v[d] = v3[d] = body_sums[1 + dim + d] / mass;
           }
         s.body_position.push_back(x);
         s.body_velocity.push_back(v);
+        // shift angular momentum and inertia to the centre of mass:
+        // L_c = L_o - M x_c x v_c, I_c = I_o - M (|x_c|^2 1 - x_c x_c)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            angular[i] = body_sums[1 + 2 * dim + i];
+            for (unsigned int j = 0; j < 3; ++j)
+              inertia[i][j] = body_sums[4 + 2 * dim + 3 * i + j] -
+                              mass * ((i == j ? x3 * x3 : 0.) - x3[i] * x3[j]);
+          }
+        angular -= mass * cross_product_3d(x3, v3);
+        Tensor<1, 3> omega;
+        if (dim == 2)
+          omega[2] = inertia[2][2] > 0 ? angular[2] / inertia[2][2] : 0.;
+        else if (determinant(inertia) > 0)
+          omega = invert(inertia) * angular;
+        s.body_angular_velocity.push_back(omega);
       }
     s.n_particles = particle_handler->n_global_particles();
     if (use_contact)

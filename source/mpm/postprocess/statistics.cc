@@ -27,6 +27,11 @@ namespace sable::mpm
           *file << ",body" << b << '_' << axes[d];
         for (unsigned int d = 0; d < dim; ++d)
           *file << ",body" << b << "_v" << axes[d];
+        if (dim == 2)
+          *file << ",body" << b << "_omega";
+        else
+          for (unsigned int d = 0; d < 3; ++d)
+            *file << ",body" << b << "_omega_" << axes[d];
       }
     if (with_contact)
       {
@@ -60,6 +65,11 @@ namespace sable::mpm
           *file << ',' << s.body_position[b][d];
         for (unsigned int d = 0; d < dim; ++d)
           *file << ',' << s.body_velocity[b][d];
+        if (dim == 2)
+          *file << ',' << s.body_angular_velocity[b][2];
+        else
+          for (unsigned int d = 0; d < 3; ++d)
+            *file << ',' << s.body_angular_velocity[b][d];
       }
     if (with_contact)
       {

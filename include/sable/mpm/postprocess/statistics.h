@@ -25,6 +25,8 @@ namespace sable::mpm
     std::vector<double>         body_mass;
     std::vector<Point<dim>>     body_position;
     std::vector<Tensor<1, dim>> body_velocity;
+    /// I^-1 L about the centre of mass (2D: the z component only)
+    std::vector<Tensor<1, 3>> body_angular_velocity;
     unsigned long long          n_particles = 0;
     /// frictional work of contact so far, and the last contact force per
     /// reported pair (empty without contact)
