@@ -310,6 +310,20 @@ namespace sable::mpm
                                     Patterns::Double()),
                       "Coulomb coefficient per friction boundary, e.g. "
                       "'2: 0.3'.");
+    prm.declare_entry("Friction wall contact",
+                      "approach",
+                      Patterns::Selection("approach|material"),
+                      "When a friction wall acts at a wall node. approach: "
+                      "whenever the node's velocity approaches the wall "
+                      "(SPEC step 6 with the wall as the other body). "
+                      "material: only if, in addition, the material points "
+                      "around the node reach the wall within the step "
+                      "(the nearest point's edge, x_p -+ l_p/2 with l_p^dim "
+                      "its current volume, at most dt times the node's "
+                      "approach speed from the wall). A node up to a cell "
+                      "away from the body's surface, whose velocity the "
+                      "surface points' stress dominates, then carries no "
+                      "contact force.");
     prm.declare_entry("Wall velocities",
                       "",
                       Patterns::Map(Patterns::Integer(0, 255),
@@ -573,6 +587,9 @@ namespace sable::mpm
                     "coefficients only for boundary ids whose type is friction");
         it->second.friction = Utilities::string_to_double(value);
       }
+    for (auto &[id, boundary] : p.boundaries)
+      boundary.material_contact = boundary.type == BoundaryType::friction &&
+                                  prm.get("Friction wall contact") == "material";
     for (const auto &[id, value] : split_map(prm.get("Wall velocities")))
       {
         const auto it = p.boundaries.find(std::stoi(id));

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace sable::mpm
@@ -154,6 +155,8 @@ namespace sable::mpm
 
     const unsigned int n_components = 1 + 2 * dim;
     nodal_data.reinit(grid.make_partitioner(n_components));
+    if (boundary_conditions.needs_material_extent())
+      material_extent.reinit(grid.make_partitioner(2 * dim));
     nodal_mass.assign(grid.n_relevant_nodes(), 0.);
     old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
     new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
@@ -370,6 +373,16 @@ namespace sable::mpm
       return i == j ? i : (i + j == 1 ? 3u : (i + j == 2 ? 4u : 5u));
     };
 
+    // the material extent around each node for friction walls that act
+    // only where material reaches them (lowest coordinate, minus highest)
+    const bool    with_extent = with_forces && material_extent.size() > 0;
+    double *const extent      = with_extent ? material_extent.get_values() : nullptr;
+    if (with_extent)
+      std::fill(extent,
+                extent + material_extent.get_partitioner()->locally_owned_size() +
+                  material_extent.get_partitioner()->n_ghost_indices(),
+                std::numeric_limits<double>::max());
+
     Q1Shape<dim> shape;
     for (const auto &cell : triangulation.active_cell_iterators())
       {
@@ -384,6 +397,24 @@ namespace sable::mpm
             const auto props = particle.get_properties();
             shape.evaluate(particle.get_reference_location(), data.inverse_h);
             const double mass = props[layout.mass];
+            if (with_extent)
+              {
+                Tensor<2, dim> F;
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = 0; j < dim; ++j)
+                    F[i][j] = props[layout.deformation + i * dim + j];
+                // half the edge of the point's current volume
+                const double half =
+                  0.5 * std::pow(determinant(F) * props[layout.initial_volume], 1. / dim);
+                const Point<dim> x = particle.get_location();
+                for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      double *const e = extent + data.nodes[v] * 2 * dim + 2 * d;
+                      e[0]            = std::min(e[0], x[d] - half);
+                      e[1]            = std::min(e[1], -(x[d] + half));
+                    }
+              }
             // internal force -V sigma . grad N, V = det(F) V0
             Tensor<2, dim> volume_stress;
             if (with_forces)
@@ -446,6 +477,11 @@ namespace sable::mpm
         }
     nodal_data.compress(VectorOperation::add);
     nodal_data.update_ghost_values();
+    if (with_extent)
+      {
+        material_extent.compress(VectorOperation::min);
+        material_extent.update_ghost_values();
+      }
   }
 
   template <int dim>
@@ -477,6 +513,8 @@ namespace sable::mpm
       }
     if (!boundary_conditions.empty())
       {
+        if (with_forces && material_extent.size() > 0)
+          boundary_conditions.set_material_extent(material_extent.get_values(), time_step);
         if (with_forces)
       boundary_work += Utilities::MPI::sum(
         boundary_conditions.apply(new_velocity,

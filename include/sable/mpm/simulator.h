@@ -164,6 +164,10 @@ namespace sable::mpm
 
     /// mass, momentum (dim), force (dim) per node, node by node
     NodalVector         nodal_data;
+    /// extent of the material around each node, 2 dim values per node
+    /// (BoundaryConditions::set_material_extent()); only with friction
+    /// walls that check for material
+    NodalVector         material_extent;
     std::vector<double> nodal_mass;
     std::vector<double> old_velocity;
     std::vector<double> new_velocity;

@@ -1,3 +1,4 @@
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/geometry_info.h>
 
 #include <sable/mpm/boundaries/boundary_conditions.h>
@@ -35,7 +36,8 @@ namespace sable::mpm
                 constraints.push_back({grid.local_index(dof),
                                        f / 2,
                                        f % 2 == 1 ? 1. : -1.,
-                                       it->first});
+                                       it->first,
+                                       cell->face(f)->center()[f / 2]});
             }
     // each (node, wall) once, in the order of boundary ids so that corner
     // nodes see their walls in a fixed order on every rank
@@ -122,6 +124,7 @@ namespace sable::mpm
   {
     double work = 0;
     in_contact.assign(constraints.size(), -1.);
+    out_of_reach.assign(constraints.size(), false);
     for (unsigned int i = 0; i < constraints.size(); ++i)
       {
         const NodeConstraint &c = constraints[i];
@@ -132,9 +135,41 @@ namespace sable::mpm
         if (wall.type == BoundaryType::moving && c.node < n_owned_nodes)
           for (unsigned int d = 0; d < dim; ++d)
             work += mass[c.node] * (wall.velocity[d] - v[d]) * wall.velocity[d];
+        if (wall.material_contact)
+          {
+            Assert(material_extent != nullptr, ExcInternalError());
+            // distance from the wall to the nearest material around the
+            // node, and how far the node moves toward the wall in this step
+            const double *extent = material_extent + c.node * 2 * dim + 2 * c.direction;
+            const double  gap = c.sign < 0. ? extent[0] - c.position : c.position + extent[1];
+            if (gap - extent_time_step * c.sign * v[c.direction] > 0.)
+              {
+                out_of_reach[i] = true;
+                continue;
+              }
+          }
         in_contact[i] = apply_one(c, v, false, -1.);
       }
     return work;
+  }
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::needs_material_extent() const
+  {
+    for (const auto &[id, wall] : parameters)
+      if (wall.material_contact)
+        return true;
+    return false;
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::set_material_extent(const double *extent,
+                                               const double  time_step)
+  {
+    material_extent  = extent;
+    extent_time_step = time_step;
   }
 
   template <int dim>
@@ -153,7 +188,8 @@ namespace sable::mpm
                                            const bool       remapped) const
   {
     for (unsigned int i = 0; i < constraints.size(); ++i)
-      if (fields.is_contact_node(constraints[i].node))
+      if (fields.is_contact_node(constraints[i].node) &&
+          !(i < out_of_reach.size() && out_of_reach[i]))
         {
           const auto [begin, end] = fields.node_records(constraints[i].node);
           for (auto *r = begin; r != end; ++r)

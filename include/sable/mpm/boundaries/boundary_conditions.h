@@ -40,6 +40,24 @@ namespace sable::mpm
           const std::vector<double> &mass,
           const unsigned int         n_owned_nodes);
 
+    /// True if a friction wall acts only where material reaches it
+    /// ('Friction wall contact = material'); apply() then needs
+    /// set_material_extent() first.
+    bool
+    needs_material_extent() const;
+
+    /**
+     * The extent of the material around every relevant node: 2 dim values
+     * per node, for each axis d the lowest coordinate min_p (x_p,d − l_p/2)
+     * and minus the highest, −max_p (x_p,d + l_p/2), over the material points
+     * p in the cells around the node (l_p: edge of the point's volume). A
+     * friction wall with material contact acts at a node only if
+     * gap − Δt · approach ≤ 0, the material reaching the wall in the step.
+     * The pointer must stay valid until apply().
+     */
+    void
+    set_material_extent(const double *extent, const double time_step);
+
     /**
      * Apply the conditions to velocities remapped from the particles (MUSL's
      * second grid pass). A friction wall holds exactly the nodes it held
@@ -69,6 +87,7 @@ namespace sable::mpm
       unsigned int  direction; ///< axis of the wall normal
       double        sign;      ///< +1: normal along +axis, -1: along -axis
       types::boundary_id id;
+      double             position; ///< wall coordinate along the normal axis
     };
 
     /// Apply constraint @p c to the velocity @p v. For friction walls,
@@ -86,6 +105,10 @@ namespace sable::mpm
     /// per constraint: fraction of tangential velocity a friction wall
     /// removed in the last apply(), -1 where it did not act
     std::vector<double> in_contact;
+    /// per constraint: excluded by the material check in the last apply()
+    std::vector<bool> out_of_reach;
+    const double *    material_extent = nullptr;
+    double            extent_time_step = 0.;
   };
 } // namespace sable::mpm
 
