@@ -311,7 +311,7 @@ namespace sable::mpm
                       "Coulomb coefficient per friction boundary, e.g. "
                       "'2: 0.3'.");
     prm.declare_entry("Friction wall contact",
-                      "approach",
+                      "material",
                       Patterns::Selection("approach|material"),
                       "When a friction wall acts at a wall node. approach: "
                       "whenever the node's velocity approaches the wall "

@@ -4,7 +4,7 @@ mu = 0.5, 8 cells per diameter, to t = 0.5 s), with
 'Boundary conditions/Friction wall contact = material'.
 
 The rigid disk rolls without slipping, x - x0 = (1/3) g t^2 sin(theta).
-With the default contact test (a wall node acts whenever its velocity
+With 'approach' contact (a wall node acts whenever its velocity
 approaches the wall) nodes a cell away from the disk's surface, whose
 velocity is dominated by the stress of the surface points, carry the
 disk's weight ahead of the contact point: the disk lags by 60% and climbs

@@ -82,10 +82,10 @@ namespace sable::mpm
     BoundaryType   type     = BoundaryType::free;
     double         friction = 0.;
     Tensor<1, dim> velocity = {};
-    /// Friction wall: act only where the material points reach the wall
+    /// Friction walls only: act only where the material points reach the wall
     /// within the step (Boundary conditions/Friction wall contact =
     /// material), not wherever a node with mass approaches it.
-    bool material_contact = false;
+    bool material_contact = true;
   };
 
   template <int dim>

@@ -135,7 +135,7 @@ namespace sable::mpm
         if (wall.type == BoundaryType::moving && c.node < n_owned_nodes)
           for (unsigned int d = 0; d < dim; ++d)
             work += mass[c.node] * (wall.velocity[d] - v[d]) * wall.velocity[d];
-        if (wall.material_contact)
+        if (wall.type == BoundaryType::friction && wall.material_contact)
           {
             Assert(material_extent != nullptr, ExcInternalError());
             // distance from the wall to the nearest material around the
@@ -158,7 +158,7 @@ namespace sable::mpm
   BoundaryConditions<dim>::needs_material_extent() const
   {
     for (const auto &[id, wall] : parameters)
-      if (wall.material_contact)
+      if (wall.type == BoundaryType::friction && wall.material_contact)
         return true;
     return false;
   }
