@@ -7,7 +7,7 @@ rolling case, against the rigid-disk solution from rest
 The scenes are those of prm/a1_mu03_theta60.prm and prm/a1_mu09_theta60.prm.
 
 Tolerances come from runs of exactly these scenes (measured at 0.5 s; the
-full runs to 1 s are in doc/validation_a1.md):
+full runs to 1 s are in doc/validation/a1.md):
 - slipping (theta = pi/3, mu = 0.3): x error -0.13% of the rigid displacement,
   v error -0.16%, largest |x error| over time 0.0012 m (with the papers'
   'approach' wall rule: +0.59%, +0.24%, 0.0051 m). Tolerances: 2% on x and v,

@@ -7,7 +7,7 @@ run to shorter end times, plus a wall-free, gravity-free impact that checks
 momentum conservation of the contact.
 
 Tolerances come from runs of exactly these scenes (the full runs to 1 s are in
-doc/validation_a2_a3.md):
+doc/validation/a2_a3.md):
 - A2 no-slip (theta = pi/4, mu = 0.495), to 0.4 s: the deformable sphere lags
   the rigid rolling solution x - x0 = (25 sqrt(2)/14) t^2: measured x error
   -24.5% of the rigid displacement, v error -32.7%, spin omega R / v = 0.58
@@ -18,7 +18,7 @@ doc/validation_a2_a3.md):
 - A3 backspin (mu = 0.5, spin 5 rad/s, R = 1 m), to 0.25 s, inside the
   sliding phase (t1 = 2/7 s) of x - x0 = (5/2) t^2: measured x error +57.8%,
   v error -8.5%: at R/4 the sphere hops and its centre accelerates faster than
-  mu g early on (doc/validation_a2_a3.md), so the bands are wide and check
+  mu g early on (doc/validation/a2_a3.md), so the bands are wide and check
   the direction and size of the motion: x error in [-50%, +80%], v error in
   [-50%, +30%]. A spin of the wrong sign sends the sphere to -x (x error
   -200%); no friction leaves it in place (-100%).
