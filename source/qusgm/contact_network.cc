@@ -37,7 +37,7 @@ namespace sable::qusgm
     const unsigned int i = c.i;
     double             r_star, e_star, h0, k_s = 0, k_t = 0, lever_i, lever_j = 0;
     Tensor<1, 3>       n;
-    const double       mu = model.friction;
+    const double       mu = wall ? model.wall_friction : model.friction;
     if (!wall)
       {
         const unsigned int j = c.other;

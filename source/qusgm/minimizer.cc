@@ -258,7 +258,51 @@ namespace sable::qusgm
               phi, 0., alpha_max, int(settings.line_search_bits), max_iter);
             alpha = best.first;
             if (!(best.second < value))
-              alpha = 0;
+              {
+                // Near the minimum Pi is flat to round-off along the line;
+                // find the zero of the directional derivative instead
+                // (regula falsi, Illinois variant) on [0, alpha_max].
+                alpha = 0;
+                auto dphi = [&](const double a) {
+                  trial = theta;
+                  trial.add(a, direction);
+                  functional.value_and_gradient(trial, trial_gradient);
+                  return trial_gradient * direction;
+                };
+                double a_lo = 0, d_lo = slope, a_hi = alpha_max,
+                       d_hi = dphi(alpha_max);
+                if (d_hi <= 0)
+                  alpha = alpha_max;
+                else
+                  {
+                    int side = 0;
+                    for (unsigned int it = 0; it < 60; ++it)
+                      {
+                        const double a =
+                          (a_lo * d_hi - a_hi * d_lo) / (d_hi - d_lo);
+                        const double d = dphi(a);
+                        alpha          = a;
+                        if (std::abs(d) < 1e-6 * std::abs(slope))
+                          break;
+                        if (d < 0)
+                          {
+                            a_lo = a;
+                            d_lo = d;
+                            if (side == -1)
+                              d_hi *= 0.5;
+                            side = -1;
+                          }
+                        else
+                          {
+                            a_hi = a;
+                            d_hi = d;
+                            if (side == 1)
+                              d_lo *= 0.5;
+                            side = 1;
+                          }
+                      }
+                  }
+              }
             if (alpha > 0)
               {
                 theta.add(alpha, direction);
@@ -283,15 +327,21 @@ namespace sable::qusgm
                     best_value = f;
                     best_alpha = a;
                   }
-                if (f > value + c1 * a * slope)
+                const double d = trial_gradient * direction;
+                // Hager-Zhang's approximate Armijo condition takes over
+                // where Pi is flat to round-off.
+                const bool decrease =
+                  f <= value + c1 * a * slope ||
+                  (std::abs(f - value) <= 1e-12 * std::abs(value) &&
+                   d <= (2 * c1 - 1) * slope);
+                if (!decrease)
                   hi = a;
-                else if (trial_gradient * direction < c2 * slope &&
-                         a < alpha_max)
+                else if (d < c2 * slope && a < alpha_max)
                   lo = a;
                 else
                   {
                     best_alpha = a;
-                    best_value = f;
+                    best_value = std::min(f, best_value);
                     break;
                   }
                 a = std::isfinite(hi) ? 0.5 * (lo + hi) : std::min(2. * a, alpha_max);
@@ -330,7 +380,7 @@ namespace sable::qusgm
             if (steepest)
               {
                 // No descent even along -grad: converged to round-off.
-                result.converged  = applied == n_sub;
+                result.converged  = false;
                 result.stopped_by = "line search stalled";
                 result.iterations = k;
                 if (applied == n_sub)

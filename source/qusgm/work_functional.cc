@@ -141,7 +141,7 @@ namespace sable::qusgm
                 sum_p += p;
               }
           }
-        if (!friction || c.p0 <= 0)
+        if (!friction || c.p0 <= 0 || c.k_s <= 0)
           continue;
 
         const Tensor<1, 3> omega_i = block(theta, rot + 3 * i) / pack.radius[i];
@@ -247,7 +247,7 @@ namespace sable::qusgm
                 sum_p += p;
               }
           }
-        if (!friction || c.p0 <= 0)
+        if (!friction || c.p0 <= 0 || c.k_s <= 0)
           continue;
         Tensor<1, 3> n_w;
         n_w[ax]                    = sgn;

@@ -53,6 +53,7 @@ namespace
     pack.add_grain(Point<3>() - (r1 + r2 - h) * n, r2, e2, nu2, 2500);
     ContactModel model;
     model.friction = 0.3;
+    model.wall_friction = 0.3;
     ContactNetwork network;
     const Walls    walls = far_walls();
     build(pack, walls, network, model);
@@ -155,6 +156,7 @@ namespace
       walls.position[w] += Walls::sign(w) * 0.02 * r; // press the walls in
     ContactModel model;
     model.friction = 0.3;
+    model.wall_friction = 0.3;
     model.torsion  = true;
     model.gravity  = true;
     ContactNetwork network;
@@ -231,6 +233,7 @@ namespace
     pack.add_grain(Point<3>(2 * r - h, 0, 0), r, 70e9, 0.2, 2420);
     ContactModel model;
     model.friction = mu;
+    model.wall_friction = mu;
     model.torsion  = false;
     const Walls    walls = far_walls();
     ContactNetwork network;

@@ -14,7 +14,8 @@ namespace sable::qusgm
   /// Material constants of the contact laws (SPEC Part C).
   struct ContactModel
   {
-    double friction = 0.3;   ///< mu, for grain-grain and grain-wall contacts
+    double friction = 0.3;   ///< mu between grains
+    double wall_friction = 0.3; ///< mu between grains and walls
     bool   torsion  = true;  ///< torsional couples (eq. 9-12)
     bool   gravity  = false; ///< weight m g along -z
     double gravity_acceleration = 9.81;
@@ -22,7 +23,7 @@ namespace sable::qusgm
     bool
     frictional() const
     {
-      return friction > 0;
+      return friction > 0 || wall_friction > 0;
     }
   };
 
