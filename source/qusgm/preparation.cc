@@ -164,7 +164,8 @@ namespace sable::qusgm
 
     bool         jammed = false;
     unsigned int rounds = 0;
-    double       step   = settings.compaction_strain;
+    const double target = settings.target_confining_stress;
+    const double tolerance = 0.05; // on sigma_c at the end of stage (a)
     for (unsigned int k = 0; k < settings.max_compaction_steps; ++k)
       {
         const ContactState state   = sim.current_state();
@@ -172,17 +173,18 @@ namespace sable::qusgm
         unsigned int       n_below = 0;
         for (const unsigned int c : state.coordination)
           n_below += c < settings.min_coordination;
-        if (sigma_c >= settings.target_confining_stress && n_below == 0)
+        const bool growth_done =
+          n_below == 0 || rounds >= settings.max_growth_rounds;
+        if (growth_done && std::abs(sigma_c - target) <= tolerance * target)
           break;
 
-        if (!jammed && sigma_c > 1e-3 * settings.target_confining_stress)
+        if (!jammed && sigma_c > 1e-3 * target)
           {
             // Stresses appear: this box is the undeformed one.
             jammed = true;
             sim.reset_undeformed();
           }
-        if (jammed && n_below > 0 && rounds < settings.max_growth_rounds &&
-            sigma_c >= 0.5 * settings.target_confining_stress)
+        if (jammed && !growth_done && sigma_c >= 0.5 * target)
           {
             ++rounds;
             grow_grains(sim, settings, state);
@@ -190,20 +192,19 @@ namespace sable::qusgm
             sim.step({}, "growth");
             continue;
           }
-        if (sigma_c >= settings.target_confining_stress)
-          {
-            // Growth rounds exhausted: accept the remaining rattlers.
-            break;
-          }
-        // Strain step: coarse while loose; near the target, a step sized
-        // from the last tangent bulk modulus, so as not to overshoot much.
+        // Strain step: coarse while loose; once loaded, sized from the last
+        // tangent bulk modulus towards the target (negative: unload, which
+        // is elastic without friction).
+        double step = settings.compaction_strain;
         if (jammed && std::isfinite(sim.last.bulk_modulus) &&
             sim.last.bulk_modulus > 0)
-          step = std::min(settings.compaction_strain,
-                          std::max(1e-6,
-                                   0.5 * (settings.target_confining_stress -
-                                          sigma_c) /
-                                     (3. * sim.last.bulk_modulus)));
+          {
+            step = 0.8 * (target - sigma_c) / (3. * sim.last.bulk_modulus);
+            step = std::max(-settings.compaction_strain,
+                            std::min(settings.compaction_strain, step));
+          }
+        else if (jammed && sigma_c > target)
+          step = -0.1 * settings.compaction_strain;
         std::array<double, 3> d_strain;
         d_strain.fill(step);
         std::array<double, 3> lengths;

@@ -33,7 +33,7 @@ namespace sable::qusgm
   void
   Simulation::open_table(const std::string &filename)
   {
-    table = std::make_unique<IncrementTable>(filename);
+    table = std::make_shared<IncrementTable>(filename);
   }
 
   void

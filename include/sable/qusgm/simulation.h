@@ -80,7 +80,7 @@ namespace sable::qusgm
   private:
     dealii::ConditionalOStream      &out;
     dealii::TimerOutput             *timer;
-    std::unique_ptr<IncrementTable>  table;
+    std::shared_ptr<IncrementTable>  table; // shared by copies
     bool                             have_previous = false;
   };
 } // namespace sable::qusgm
