@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sable::qusgm
 {
@@ -125,24 +126,31 @@ namespace sable::qusgm
     const unsigned int n = pack.size();
     const double       cell_size = 2. * pack.max_radius() + skin;
 
-    // Cell list over the box of the current walls (grains outside are
-    // clamped into the border cells).
+    // Cell list over the bounding box of the grain centres, with at most
+    // a few cells per grain (memory stays O(N) for any wall box).
     std::array<unsigned int, 3> n_cells;
-    std::array<double, 3>       origin;
+    std::array<double, 3>       origin, extent;
     for (unsigned int a = 0; a < 3; ++a)
       {
-        origin[a] = current_walls.position[a];
-        n_cells[a] = std::max(
-          1u,
-          std::min(1000u,
-                   static_cast<unsigned int>(current_walls.length(a) / cell_size)));
+        double lo = std::numeric_limits<double>::max(), hi = -lo;
+        for (const Point<3> &x : current)
+          {
+            lo = std::min(lo, x[a]);
+            hi = std::max(hi, x[a]);
+          }
+        origin[a] = lo;
+        extent[a] = std::max(hi - lo, cell_size);
+        n_cells[a] = std::max(1u, static_cast<unsigned int>(extent[a] / cell_size));
       }
+    const double too_many = double(n_cells[0]) * n_cells[1] * n_cells[2] / (8. * n + 27.);
+    if (too_many > 1)
+      for (unsigned int a = 0; a < 3; ++a)
+        n_cells[a] = std::max(1u, static_cast<unsigned int>(n_cells[a] / std::cbrt(too_many)));
     auto cell_index = [&](const Point<3> &x) {
       std::array<unsigned int, 3> c;
       for (unsigned int a = 0; a < 3; ++a)
         {
-          const double s =
-            (x[a] - origin[a]) / current_walls.length(a) * n_cells[a];
+          const double s = (x[a] - origin[a]) / extent[a] * n_cells[a];
           c[a] = s <= 0 ? 0 :
                           std::min(n_cells[a] - 1, static_cast<unsigned int>(s));
         }
