@@ -12,9 +12,13 @@ namespace sable::qusgm
   measure(const Walls                 &walls,
           const std::array<double, 3> &undeformed_lengths,
           const ContactState          &state,
-          const unsigned int           n_grains,
+          const Pack                  &pack,
           const unsigned int           axis)
   {
+    const unsigned int n_grains = pack.size();
+    double             volume   = 0;
+    for (const double r : pack.radius)
+      volume += 4. / 3. * M_PI * r * r * r;
     MacroscopicState m;
     for (unsigned int a = 0; a < 3; ++a)
       {
@@ -33,7 +37,8 @@ namespace sable::qusgm
     double total = 0;
     for (const unsigned int c : state.coordination)
       total += c;
-    m.coordination = n_grains > 0 ? total / n_grains : 0.;
+    m.coordination   = n_grains > 0 ? total / n_grains : 0.;
+    m.solid_fraction = volume / walls.volume();
     return m;
   }
 
@@ -64,7 +69,7 @@ namespace sable::qusgm
   {
     out << "increment,stage,strain_x,strain_y,strain_z,stress_x,stress_y,"
            "stress_z,confining_stress,deviatoric_stress,bulk_modulus,"
-           "shear_modulus,sliding_ratio,coordination_number,contacts,"
+           "shear_modulus,sliding_ratio,coordination_number,solid_fraction,contacts,"
            "iterations,evaluations,residual,relative_residual,wall_time\n";
   }
 
@@ -84,7 +89,7 @@ namespace sable::qusgm
       out << ',' << s;
     out << ',' << m.confining_stress << ',' << m.deviatoric_stress << ','
         << bulk_modulus << ',' << shear_modulus << ',' << m.sliding_ratio << ','
-        << m.coordination << ',' << m.n_contacts << ',' << result.iterations
+        << m.coordination << ',' << m.solid_fraction << ',' << m.n_contacts << ',' << result.iterations
         << ',' << result.evaluations << ',' << result.residual << ','
         << (result.max_contact_force > 0 ?
               result.residual / result.max_contact_force :

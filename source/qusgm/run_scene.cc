@@ -162,7 +162,8 @@ namespace sable::qusgm
     {
       prm.declare_entry("VTU increments", "last", Patterns::Anything(),
                         "Increments of the load path to write as grains-NNNNN.vtu: "
-                        "'none', 'last', 'all', or a comma-separated list of numbers.");
+                        "'none', or a comma-separated list of increment numbers "
+                        "(0: the prepared pack), 'last' and 'all'.");
       prm.declare_entry("Iteration log", "false", Patterns::Bool(),
                         "Write every minimiser iteration (iteration, Pi, |grad Pi|, "
                         "step, active and sliding contacts) to iterations.log.");
@@ -353,14 +354,19 @@ namespace sable::qusgm
     iteration_log = prm.get_bool("Iteration log");
     prm.leave_subsection();
     std::set<unsigned int> vtu_increments;
-    const bool vtu_all = vtu_list == "all", vtu_last = vtu_list == "last";
-    if (!vtu_all && !vtu_last && vtu_list != "none" && !vtu_list.empty())
+    bool vtu_all = false, vtu_last = false;
+    if (vtu_list != "none" && !vtu_list.empty())
       for (const std::string &item : dealii::Utilities::split_string_list(vtu_list))
         {
+          if (item == "all" || item == "last")
+            {
+              (item == "all" ? vtu_all : vtu_last) = true;
+              continue;
+            }
           char *end = nullptr;
           const long value = std::strtol(item.c_str(), &end, 10);
           check_input(*end == '\0' && value >= 0, "Output/VTU increments", vtu_list,
-                      "none | last | all | comma-separated increment numbers");
+                      "none, or a comma-separated list of increment numbers, last, all");
           vtu_increments.insert(value);
         }
 

@@ -90,7 +90,7 @@ namespace sable::qusgm
       IncrementSolver solver(pack, walls, network, model, settings);
       record.result = solver.apply(wall_moves, iteration_log);
       record.macroscopic =
-        measure(walls, undeformed_lengths, solver.state(), pack.size(), axis);
+        measure(walls, undeformed_lengths, solver.state(), pack, axis);
     }
     // Moduli of this interval: strain increments relative to the box
     // before the increment.

@@ -23,6 +23,7 @@ namespace sable::qusgm
     double deviatoric_stress = 0;   ///< axial minus mean lateral
     double sliding_ratio     = 0;
     double coordination      = 0;   ///< mean contacts per grain
+    double solid_fraction    = 0;   ///< grain volume / box volume
     unsigned int n_contacts  = 0;
   };
 
@@ -30,7 +31,7 @@ namespace sable::qusgm
   measure(const Walls        &walls,
           const std::array<double, 3> &undeformed_lengths,
           const ContactState &state,
-          unsigned int        n_grains,
+          const Pack         &pack,
           unsigned int        axis);
 
   /**
