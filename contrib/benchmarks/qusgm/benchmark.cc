@@ -6,6 +6,7 @@
 //   qusgm_benchmark scaling <cache dir> N1 [N2 ...]
 //   qusgm_benchmark accuracy <cache dir> N
 //   qusgm_benchmark validation <cache dir> N
+//   qusgm_benchmark dem <cache dir> N
 //
 // validation: from the compacted pack, for mu = 0.3, 0.5 and 0, friction
 // activation by uniaxial strain until the sliding ratio saturates, then
@@ -17,6 +18,7 @@
 // five uniaxial increments of 1e-4 before anything is timed.
 #include <deal.II/base/mpi.h>
 
+#include <sable/qusgm/load_path.h>
 #include <sable/qusgm/preparation.h>
 #include <sable/qusgm/simulation.h>
 
@@ -162,6 +164,98 @@ namespace
     return e / scale;
   }
 
+  // Dynamic relaxation of the same increment, as a DEM code would do it:
+  // explicit central differences with the same contact forces (-grad Pi),
+  // translational masses m and rotational ones (2/5) m for Omega R,
+  // Cundall's local damping 0.7, time step 0.2 sqrt(m_min / k_max). The walls
+  // jump to their new position with the affine guess at t = 0, as for the
+  // minimisers. Returns the wall time and steps until the stress change is
+  // within @p tolerance of the reference at two checks 100 steps apart.
+  std::pair<double, unsigned int>
+  dem_relax(const Simulation &start, const double d_eps,
+            const Outcome &ref, const double tolerance)
+  {
+    Simulation         sim = start;
+    const unsigned int n   = sim.pack.size();
+    const auto         t0  = std::chrono::steady_clock::now();
+    ContactNetwork    &network = sim.network;
+    WorkFunctional     f(sim.pack, network, sim.model);
+    Walls              walls = sim.walls;
+    const auto move = LoadPath::wall_moves({{0, 0, d_eps}}, sim.undeformed_lengths);
+    dealii::Vector<double> theta(6 * n), v(6 * n), g(6 * n), mass(6 * n);
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const double x = sim.pack.centre[i][a];
+          theta[3 * i + a] =
+            move[a] + (move[a + 3] - move[a]) * (x - walls.position[a]) / walls.length(a);
+        }
+    for (unsigned int w = 0; w < 6; ++w)
+      walls.position[w] += move[w];
+    f.set_walls(walls);
+    double m_min = 1e300;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double m = sim.pack.mass(i);
+        m_min          = std::min(m_min, 0.4 * m);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            mass[3 * i + d]         = m;
+            mass[3 * n + 3 * i + d] = 0.4 * m;
+          }
+      }
+    // Stiffest contact: dP/dh = 1.5 k_n sqrt(h); k*_s is below it.
+    const ContactState s0 = f.state(theta);
+    double k_max = 0;
+    for (const Contact &c : network.pairs)
+      k_max = std::max(k_max, 1.5 * c.k_n * std::sqrt(std::max(c.h0, 0.)));
+    for (const Contact &c : network.wall_contacts)
+      k_max = std::max(k_max, 1.5 * c.k_n * std::sqrt(std::max(c.h0, 0.)));
+    const double dt = 0.2 * std::sqrt(m_min / (2 * k_max));
+    std::vector<Point<3>> x;
+    unsigned int good = 0;
+    for (unsigned int step = 1; step <= 400000; ++step)
+      {
+        f.value_and_gradient(theta, g);
+        for (unsigned int k = 0; k < 6 * n; ++k)
+          {
+            const double force = -g[k];
+            const double damped =
+              force - 0.7 * std::abs(force) * (v[k] > 0 ? 1. : v[k] < 0 ? -1. : 0.);
+            v[k] += dt * damped / mass[k];
+            theta[k] += dt * v[k];
+          }
+        if (step % 20 == 0)
+          {
+            f.positions(theta, x);
+            if (network.needs_rebuild(x, walls))
+              network.build(sim.pack, sim.walls, x, walls, sim.model,
+                            sim.settings.skin * sim.pack.mean_radius());
+          }
+        if (step % 100 == 0)
+          {
+            const ContactState s = f.state(theta);
+            double e = 0, scale = 0;
+            for (unsigned int a = 0; a < 3; ++a)
+              {
+                const double sigma =
+                  0.5 * (s.wall_force[a] + s.wall_force[a + 3]) / walls.area(a);
+                e = std::max(e, std::abs(sigma - start.last.macroscopic.stress[a] -
+                                         ref.d_stress[a]));
+                scale = std::max(scale, std::abs(ref.d_stress[a]));
+              }
+            good = e < tolerance * scale ? good + 1 : 0;
+            if (good == 2)
+              return {std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                        .count(),
+                      step};
+          }
+      }
+    (void)s0;
+    return {std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+            400000};
+  }
+
   void
   print(const std::string &name, const Outcome &o, const Outcome &ref,
         const unsigned int n, const double d_eps)
@@ -189,6 +283,21 @@ main(int argc, char **argv)
                "relative_residual,stress_change_error,bulk_modulus_error,"
                "shear_modulus_error,stopped_by"
             << std::endl;
+  if (mode == "dem")
+    {
+      const unsigned int n     = std::stoi(argv[3]);
+      const Simulation   start = prepared(n, cache);
+      const Outcome      ref   = run(start, lbfgs(1e-9), 1e-4);
+      const auto [seconds, steps] = dem_relax(start, 1e-4, ref, 1e-3);
+      std::cout << n << ",0.0001,dynamic relaxation (DEM-like) to 1e-3," << seconds
+                << ',' << steps << ",,,,,," << std::endl;
+      for (const double f : {1e-3, 1e-4})
+        {
+          MinimizerSettings s = lbfgs(f);
+          print("lbfgs force " + std::to_string(f), run(start, s, 1e-4), ref, n, 1e-4);
+        }
+      return 0;
+    }
   if (mode == "validation")
     {
       const unsigned int n = std::stoi(argv[3]);
