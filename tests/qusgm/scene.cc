@@ -1,9 +1,11 @@
-// The QuSGM scene runner: bad input is refused with a message naming the
+// Load paths and the Hooke fit of K and G; the QuSGM scene runner: bad input is refused with a message naming the
 // entry before any output exists; a tiny scene runs end to end and writes
 // increments.csv with the documented header and one row per increment.
 #include <deal.II/base/mpi.h>
 
 #include <sable/base/input_error.h>
+#include <sable/qusgm/load_path.h>
+#include <sable/qusgm/macroscopic.h>
 #include <sable/qusgm/run_scene.h>
 
 #include <cmath>
@@ -62,10 +64,50 @@ namespace
     "subsection Pack\n  set Source = file\n  set File = pack.csv\nend\n";
 } // namespace
 
+namespace
+{
+  // Load paths and the Hooke fit: an isotropic linear material with known
+  // K and G must be recovered from each path's strain increments.
+  void
+  test_load_paths_and_fit()
+  {
+    using namespace sable::qusgm;
+    const double k = 1.3e9, g = 0.8e9;
+    for (const std::string type : {"isotropic", "uniaxial strain", "triaxial"})
+      {
+        LoadPath path;
+        path.type             = LoadPath::parse_type(type);
+        path.axis             = 1;
+        path.strain_increment = 2e-4;
+        path.lateral_ratio    = -0.3;
+        const auto d_eps = path.strain_increments();
+        const double trace = d_eps[0] + d_eps[1] + d_eps[2];
+        std::array<double, 3> d_sigma;
+        for (unsigned int a = 0; a < 3; ++a)
+          d_sigma[a] = k * trace + 2 * g * (d_eps[a] - trace / 3);
+        const auto [k_fit, g_fit] = fit_moduli(d_sigma, d_eps);
+        sable_tests::check_relative(type + ": fitted K", k_fit, k, 1e-12);
+        if (type == "isotropic")
+          check(type + ": G undetermined (nan)", std::isnan(g_fit));
+        else
+          sable_tests::check_relative(type + ": fitted G", g_fit, g, 1e-12);
+        check(type + ": axial strain increment",
+              d_eps[1] == 2e-4 &&
+                (type != "uniaxial strain" || (d_eps[0] == 0 && d_eps[2] == 0)) &&
+                (type != "triaxial" || (d_eps[0] == -0.6e-4 && d_eps[2] == -0.6e-4)));
+        const auto moves = LoadPath::wall_moves(d_eps, {{1, 2, 4}});
+        check(type + ": symmetric wall moves",
+              moves[1] == 2e-4 && moves[4] == -2e-4 &&
+                moves[0] == 0.5 * d_eps[0] && moves[3] == -0.5 * d_eps[0]);
+      }
+  }
+} // namespace
+
 int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  test_load_paths_and_fit();
   fs::remove_all(work);
   fs::create_directories(work);
 
