@@ -1,4 +1,5 @@
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/grid/reference_cell.h>
 
 #include <sable/qusgm/macroscopic.h>
 
@@ -117,6 +118,51 @@ namespace sable::qusgm
     std::ofstream out(filename);
     dealii::DataOutBase::write_vtu(patches,
                                    {"radius", "coordination", "youngs_modulus"},
+                                   {},
+                                   dealii::DataOutBase::VtkFlags(),
+                                   out);
+  }
+
+  void
+  write_contacts_vtu(const std::string    &filename,
+                     const Pack           &pack,
+                     const Walls          &walls,
+                     const ContactNetwork &network,
+                     const ContactModel   &model)
+  {
+    std::vector<dealii::DataOutBase::Patch<1, 3>> patches;
+    auto add = [&](const Contact &c, const Point<3> &a, const Point<3> &b,
+                   const double mu) {
+      if (c.p0 <= 0)
+        return;
+      dealii::DataOutBase::Patch<1, 3> patch;
+      patch.vertices[0]    = a;
+      patch.vertices[1]    = b;
+      patch.n_subdivisions = 1;
+      patch.reference_cell = dealii::ReferenceCells::get_hypercube<1>();
+      patch.patch_index    = patches.size();
+      patch.data.reinit(3, 2);
+      const double q = c.q0.norm();
+      for (unsigned int v = 0; v < 2; ++v)
+        {
+          patch.data(0, v) = c.p0;
+          patch.data(1, v) = q;
+          patch.data(2, v) = mu > 0 ? q / (mu * c.p0) : 0.;
+        }
+      patches.push_back(patch);
+    };
+    for (const Contact &c : network.pairs)
+      add(c, pack.centre[c.i], pack.centre[c.other], model.friction);
+    for (const Contact &c : network.wall_contacts)
+      {
+        Point<3> contact_point = pack.centre[c.i];
+        contact_point[Walls::axis(c.other)] = walls.position[c.other];
+        add(c, pack.centre[c.i], contact_point, model.wall_friction);
+      }
+    std::ofstream out(filename);
+    dealii::DataOutBase::write_vtu(patches,
+                                   {"normal_force", "tangential_force",
+                                    "friction_mobilisation"},
                                    {},
                                    dealii::DataOutBase::VtkFlags(),
                                    out);

@@ -427,15 +427,22 @@ namespace sable::qusgm
     sim.open_table(output + "/increments.csv");
     if (iteration_log)
       sim.iteration_log = &log_file;
-    std::vector<std::pair<double, std::string>> vtu_records;
+    std::vector<std::pair<double, std::string>> vtu_records, contact_records;
     auto write_vtu = [&](const unsigned int increment) {
       dealii::TimerOutput::Scope scope(timer, "output");
       const std::string name =
         "grains-" + dealii::Utilities::int_to_string(increment, 5) + ".vtu";
       write_grains_vtu(output + "/" + name, sim.pack, sim.current_state());
+      const std::string contacts =
+        "contacts-" + dealii::Utilities::int_to_string(increment, 5) + ".vtu";
+      write_contacts_vtu(output + "/" + contacts, sim.pack, sim.walls,
+                         sim.network, sim.model);
       vtu_records.emplace_back(increment, name);
+      contact_records.emplace_back(increment, contacts);
       std::ofstream pvd(output + "/grains.pvd");
       dealii::DataOutBase::write_pvd_record(pvd, vtu_records);
+      std::ofstream contacts_pvd(output + "/contacts.pvd");
+      dealii::DataOutBase::write_pvd_record(contacts_pvd, contact_records);
     };
 
     if (prepare)
@@ -465,7 +472,7 @@ namespace sable::qusgm
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out << "Output written to " << output << "/ (increments.csv"
-        << (vtu_records.empty() ? "" : ", grains.pvd") << ", final_pack.csv)" << std::endl
+        << (vtu_records.empty() ? "" : ", grains.pvd, contacts.pvd") << ", final_pack.csv)" << std::endl
         << "Total wall time: " << seconds << " s" << std::endl;
   }
 } // namespace sable::qusgm

@@ -202,6 +202,7 @@ main(int argc, char **argv)
   }
   check("VTU of the last increment written",
         fs::exists(work / "out_pair" / "grains-00003.vtu") &&
-          fs::exists(work / "out_pair" / "grains.pvd"));
+          fs::exists(work / "out_pair" / "grains.pvd") &&
+          fs::exists(work / "out_pair" / "contacts-00003.vtu"));
   return sable_tests::exit_code();
 }

@@ -3,6 +3,7 @@
 #ifndef sable_qusgm_macroscopic_h
 #define sable_qusgm_macroscopic_h
 
+#include <sable/qusgm/contact_network.h>
 #include <sable/qusgm/minimizer.h>
 #include <sable/qusgm/pack.h>
 #include <sable/qusgm/work_functional.h>
@@ -68,6 +69,18 @@ namespace sable::qusgm
   write_grains_vtu(const std::string   &filename,
                    const Pack          &pack,
                    const ContactState  &state);
+  /**
+   * The force network of the committed configuration as line segments
+   * (VTU): grain centre to grain centre, or to the wall contact point, with
+   * the normal force P, the tangential force |Q| and its mobilisation
+   * |Q| / (mu P) (1: sliding).
+   */
+  void
+  write_contacts_vtu(const std::string    &filename,
+                     const Pack           &pack,
+                     const Walls          &walls,
+                     const ContactNetwork &network,
+                     const ContactModel   &model);
 } // namespace sable::qusgm
 
 #endif
