@@ -48,14 +48,13 @@ def slope(xs, ys):
 def main():
     out = sys.argv[1]
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
-    colours = {"0.3": "C0", "0.5": "C1", "0.0": "C2"}
+    colours = ["C0", "C1", "C2", "C3", "C4"]
     smin, smax = 1e9, 0
     zs, phis = [], []
-    for spec in sys.argv[2:]:
+    for index, spec in enumerate(sys.argv[2:]):
         label, path = spec.split(":", 1)
-        mu = label.split("=")[1]
         rows = read(path)
-        c = colours.get(mu, None)
+        c = colours[index % len(colours)]
         for stage, marker, fill in (("activation", "o", "none"), ("test", "s", None)):
             sel = [r for r in rows if r["stage"] == stage and r["k"] > 0]
             if not sel:
