@@ -32,7 +32,8 @@ def main():
     if ns:
         ref = [r for r in s if r["method"] == "lbfgs force 1e-4"]
         if ref:
-            t0, n0 = float(ref[0]["seconds"]), int(ref[0]["grains"])
+            mid = ref[len(ref) // 2]
+            t0, n0 = float(mid["seconds"]), int(mid["grains"])
             axes[0].loglog(ns, [t0 * n / n0 for n in ns], "k:", label="linear in N")
     axes[0].set_xlabel("grains N")
     axes[0].set_ylabel("wall time of one increment [s]")

@@ -2,6 +2,7 @@
 #include <sable/qusgm/pack.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -69,6 +70,45 @@ namespace sable::qusgm
         shear_modulus[k]     = old.shear_modulus[i];
         density[k]           = old.density[i];
       }
+  }
+
+  void
+  Pack::sort_spatially()
+  {
+    if (size() < 2)
+      return;
+    Point<3> lo = centre[0], hi = centre[0];
+    for (const Point<3> &x : centre)
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          lo[a] = std::min(lo[a], x[a]);
+          hi[a] = std::max(hi[a], x[a]);
+        }
+    const double cell = 2. * max_radius();
+    // Spread the low 10 bits of v to every third bit.
+    auto spread = [](std::uint64_t v) {
+      std::uint64_t r = 0;
+      for (unsigned int b = 0; b < 10; ++b)
+        r |= ((v >> b) & 1u) << (3 * b);
+      return r;
+    };
+    std::vector<std::pair<std::uint64_t, unsigned int>> keys(size());
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        std::uint64_t code = 0;
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            const auto c = static_cast<std::uint64_t>(
+              std::min(1023., (centre[i][a] - lo[a]) / cell));
+            code |= spread(c) << a;
+          }
+        keys[i] = {code, i};
+      }
+    std::sort(keys.begin(), keys.end());
+    std::vector<unsigned int> permutation(size());
+    for (unsigned int k = 0; k < size(); ++k)
+      permutation[k] = keys[k].second;
+    permute(permutation);
   }
 
   void

@@ -96,6 +96,7 @@ namespace sable::qusgm
                     "a value at which random sequential addition can place "
                     "every grain (try a lower one)");
       }
+    pack.sort_spatially();
     return pack;
   }
 

@@ -55,6 +55,13 @@ namespace sable::qusgm
     void
     permute(const std::vector<unsigned int> &permutation);
 
+    /**
+     * Renumber the grains along a Morton (Z-order) curve of cells of about
+     * one diameter, so that neighbours in space are close in memory.
+     */
+    void
+    sort_spatially();
+
     /// Throw InputError (naming @p source) unless every grain is valid.
     void
     check(const std::string &source) const;
