@@ -89,7 +89,8 @@ namespace sable::qusgm
 
   IncrementResult
   IncrementSolver::apply(const std::array<double, 6> &wall_displacement,
-                         std::ostream                *log)
+                         std::ostream                *log,
+                         const Vector<double>        *guess)
   {
     IncrementResult    result;
     const unsigned int n = pack.size();
@@ -107,7 +108,16 @@ namespace sable::qusgm
     for (unsigned int w = 0; w < 6; ++w)
       any_motion |= wall_displacement[w] != 0;
     unsigned int applied = 0;
-    if (any_motion)
+    if (any_motion && guess && n_sub == 1 && guess->size() == theta.size())
+      {
+        // Predictor: the walls move at once, the grains as in the guess.
+        for (unsigned int w = 0; w < 6; ++w)
+          walls.position[w] += sub_delta[w];
+        functional.set_walls(walls);
+        theta = *guess;
+        ++applied;
+      }
+    else if (any_motion)
       {
         move_walls(sub_delta, theta);
         ++applied;
@@ -399,6 +409,7 @@ namespace sable::qusgm
     result.residual          = last_state.max_residual;
     result.max_contact_force = last_state.max_contact_force;
     result.evaluations       = functional.n_evaluations - evaluations_before;
+    last_solution            = theta;
     functional.commit(theta, pack, network, reference_walls);
     return result;
   }

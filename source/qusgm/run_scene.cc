@@ -153,6 +153,12 @@ namespace sable::qusgm
       prm.declare_entry("Line search bits", "24", Patterns::Integer(4, 52),
                         "Accuracy of the Brent line search (bits of the step).");
       prm.declare_entry("LBFGS history", "8", Patterns::Integer(1, 100));
+      prm.declare_entry("Initial guess", "affine",
+                        Patterns::Selection("affine|previous increment"),
+                        "affine: the field that carries the walls (the paper's "
+                        "eq. A1); previous increment: the last increment's "
+                        "solution, scaled, when the walls repeat its move "
+                        "(needs 'Wall sub-increments = 1'; else affine).");
       prm.declare_entry("Skin", "0.3", Patterns::Double(),
                         "Contact search distance beyond touching, relative to "
                         "the mean radius.");
@@ -335,6 +341,7 @@ namespace sable::qusgm
     settings.line_search_bits             = prm.get_integer("Line search bits");
     settings.lbfgs_history                = prm.get_integer("LBFGS history");
     settings.skin                         = prm.get_double("Skin");
+    settings.predictor = prm.get("Initial guess") == "previous increment";
     prm.leave_subsection();
     check_input(settings.displacement_cap > 0 && settings.displacement_cap <= 0.1,
                 "Minimizer/Displacement cap", settings.displacement_cap,

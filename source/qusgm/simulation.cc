@@ -28,6 +28,7 @@ namespace sable::qusgm
   {
     model = new_model;
     network.update_reference(pack, walls, model);
+    last_theta.reinit(0);
   }
 
   void
@@ -46,6 +47,7 @@ namespace sable::qusgm
   void
   Simulation::radii_changed()
   {
+    last_theta.reinit(0);
     network = ContactNetwork();
     network.build(pack,
                   walls,
@@ -88,7 +90,29 @@ namespace sable::qusgm
       if (timer)
         scope = std::make_unique<dealii::TimerOutput::Scope>(*timer, "equilibrium (" + stage + ")");
       IncrementSolver solver(pack, walls, network, model, settings);
-      record.result = solver.apply(wall_moves, iteration_log);
+      // Predictor: if the walls repeat the last move (up to a positive
+      // factor), start from the last solution times that factor.
+      Vector<double> guess;
+      if (settings.predictor && last_theta.size() == 6 * pack.size())
+        {
+          double dot = 0, previous = 0, current = 0;
+          for (unsigned int w = 0; w < 6; ++w)
+            {
+              dot += wall_moves[w] * last_moves[w];
+              previous += last_moves[w] * last_moves[w];
+              current += wall_moves[w] * wall_moves[w];
+            }
+          if (previous > 0 && dot > 0 &&
+              std::abs(dot * dot - previous * current) <= 1e-12 * previous * current)
+            {
+              guess = last_theta;
+              guess *= dot / previous;
+            }
+        }
+      record.result = solver.apply(wall_moves, iteration_log,
+                                   guess.size() ? &guess : nullptr);
+      last_theta = solver.solution();
+      last_moves = wall_moves;
       record.macroscopic =
         measure(walls, undeformed_lengths, solver.state(), pack, axis);
     }

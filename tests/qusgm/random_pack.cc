@@ -129,6 +129,24 @@ main()
       if (!c.paper_tests)
         final_stress.push_back(sim.last.macroscopic.stress);
     }
+  // The previous-increment predictor must reach the same equilibria.
+  {
+    Simulation sim = base;
+    sim.settings.method             = MinimizerSettings::Method::lbfgs;
+    sim.settings.sub_increments     = 1;
+    sim.settings.energy_tolerance   = 0;
+    sim.settings.gradient_tolerance = 0;
+    sim.settings.force_tolerance    = 1e-7;
+    sim.settings.predictor          = true;
+    unsigned int iterations = 0;
+    for (unsigned int k = 0; k < 3; ++k)
+      iterations += sim.strain_step(uniaxial(1e-4), "test").result.iterations;
+    std::cout << "lbfgs with the predictor: " << iterations
+              << " iterations for three increments" << std::endl;
+    for (unsigned int a = 0; a < 3; ++a)
+      check_relative("predictor reaches the same stress, axis " + std::to_string(a),
+                     sim.last.macroscopic.stress[a], final_stress[1][a], 1e-5);
+  }
   for (unsigned int a = 0; a < 3; ++a)
     check_relative("both minimisers reach the same stress, axis " +
                      std::to_string(a),

@@ -293,10 +293,13 @@ main(int argc, char **argv)
       std::cout << n << ",0.0001,dynamic relaxation (DEM-like) to 1e-3," << seconds
                 << ',' << steps << ",,,,,," << std::endl;
       for (const double f : {1e-3, 1e-4})
-        {
-          MinimizerSettings s = lbfgs(f);
-          print("lbfgs force " + std::to_string(f), run(start, s, 1e-4), ref, n, 1e-4);
-        }
+        for (const bool predictor : {false, true})
+          {
+            MinimizerSettings s = lbfgs(f);
+            s.predictor         = predictor;
+            print("lbfgs force " + std::to_string(f) + (predictor ? " predictor" : ""),
+                  run(start, s, 1e-4), ref, n, 1e-4);
+          }
       return 0;
     }
   if (mode == "validation")
@@ -344,6 +347,9 @@ main(int argc, char **argv)
           print("nlcg paper 1e-11/1e-13", run(start, nlcg_paper(1e-11, 1e-13), 1e-4),
                 ref, n, 1e-4);
           print("lbfgs force 1e-4", run(start, lbfgs(1e-4), 1e-4), ref, n, 1e-4);
+          MinimizerSettings p = lbfgs(1e-4);
+          p.predictor         = true;
+          print("lbfgs force 1e-4 predictor", run(start, p, 1e-4), ref, n, 1e-4);
         }
       else
         for (const double d_eps : {5e-5, 1e-4, 5e-4})

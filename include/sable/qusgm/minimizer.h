@@ -37,6 +37,9 @@ namespace sable::qusgm
     unsigned int line_search_bits = 24;  ///< Brent accuracy, bits of alpha
     unsigned int lbfgs_history    = 8;
     double       skin             = 0.3; ///< cell-list skin / mean radius
+    /// Start from the previous increment's solution, scaled, when the walls
+    /// repeat its move (else, and with sub-increments, the affine guess).
+    bool predictor = false;
   };
 
   struct IncrementResult
@@ -73,7 +76,15 @@ namespace sable::qusgm
      */
     IncrementResult
     apply(const std::array<double, 6> &wall_displacement,
-          std::ostream                *log = nullptr);
+          std::ostream                *log   = nullptr,
+          const Vector<double>        *guess = nullptr);
+
+    /// The displacements and rotations of the last increment.
+    const Vector<double> &
+    solution() const
+    {
+      return last_solution;
+    }
 
     /// Loads of the last equilibrium (before commit, so per-increment data
     /// such as sliding refers to that increment).
@@ -113,6 +124,7 @@ namespace sable::qusgm
     WorkFunctional     functional;
     Walls              walls;
     ContactState       last_state;
+    Vector<double>     last_solution;
     std::vector<Point<3>> positions;
   };
 } // namespace sable::qusgm

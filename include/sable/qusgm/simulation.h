@@ -82,6 +82,9 @@ namespace sable::qusgm
     dealii::TimerOutput             *timer;
     std::shared_ptr<IncrementTable>  table; // shared by copies
     bool                             have_previous = false;
+    // The last increment's solution and wall moves, for the predictor.
+    Vector<double>                   last_theta;
+    std::array<double, 6>            last_moves{};
   };
 } // namespace sable::qusgm
 
