@@ -157,7 +157,8 @@ main(int argc, char **argv)
     "subsection Load path\n  set Type = uniaxial strain\n  set Axis = x\n"
     "  set Number of increments = 3\n  set Strain increment = 1e-3\nend\n"
     "subsection Minimizer\n  set Method = lbfgs\n  set Force tolerance = 1e-10\n"
-    "  set Energy tolerance = 0\n  set Gradient tolerance = 0\nend\n");
+    "  set Energy tolerance = 0\n  set Gradient tolerance = 0\nend\n"
+    "subsection Output\n  set Iteration log = true\nend\n");
   bool ok = true;
   try
     {
@@ -199,6 +200,14 @@ main(int argc, char **argv)
     sable_tests::check_relative("pair scene: stress_x in increments.csv against "
                                 "the chain solution",
                                 stress_x, f / 4e-6, 1e-6);
+  }
+  {
+    std::ifstream log(work / "out_pair" / "iterations.log");
+    std::string   first;
+    std::getline(log, first);
+    check("iteration log written with its header",
+          first.find("iteration pi gradient_norm step active_contacts "
+                     "sliding_contacts") != std::string::npos);
   }
   check("VTU of the last increment written",
         fs::exists(work / "out_pair" / "grains-00003.vtu") &&
