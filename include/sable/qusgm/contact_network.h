@@ -1,0 +1,114 @@
+// Candidate contacts (grain-grain and grain-wall) found with a cell list,
+// with the reference loads each contact carries from one load increment to
+// the next.
+#ifndef sable_qusgm_contact_network_h
+#define sable_qusgm_contact_network_h
+
+#include <sable/qusgm/pack.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace sable::qusgm
+{
+  /// Material constants of the contact laws (SPEC Part C).
+  struct ContactModel
+  {
+    double friction = 0.3;   ///< mu between grains
+    double wall_friction = 0.3; ///< mu between grains and walls
+    bool   torsion  = true;  ///< torsional couples (eq. 9-12)
+    bool   gravity  = false; ///< weight m g along -z
+    double gravity_acceleration = 9.81;
+
+    bool
+    frictional() const
+    {
+      return friction > 0 || wall_friction > 0;
+    }
+  };
+
+  /**
+   * One contact. Constant within a load increment: the reference overlap,
+   * loads and the quantities the linearised laws take from the reference
+   * configuration (P0, a0, A0). `other` is a grain index for a grain-grain
+   * contact and the wall index for a grain-wall contact.
+   */
+  struct Contact
+  {
+    unsigned int i, other;
+    double       k_n;          ///< Hertz coefficient (4/3) E* sqrt(R*)
+    double       h0;           ///< reference overlap (<= 0: no contact)
+    double       p0;           ///< reference normal force
+    Tensor<1, 3> q0;           ///< reference tangential force on grain i
+    double       m0;           ///< reference torsional couple on i about n_i
+    double       k_s, k_t;     ///< stick stiffnesses at the reference
+    double       q_max, m_max; ///< Coulomb caps mu P0, (3 pi/16) a0 mu P0
+    double       lever_i;      ///< distance from centre i to contact centre
+    double       lever_j;      ///< same for grain j (grain-grain only)
+
+    std::uint64_t
+    key(const unsigned int n_grains) const
+    {
+      return std::uint64_t(i) * (n_grains + 6) + other;
+    }
+  };
+
+  /**
+   * Candidate contacts within a skin distance, built with a cell list in
+   * O(N). `pairs` holds grain-grain contacts (i < other), `wall_contacts`
+   * grain-wall contacts; both sorted by key, so that rebuilding carries the
+   * reference loads over by pair.
+   */
+  class ContactNetwork
+  {
+  public:
+    std::vector<Contact> pairs;
+    std::vector<Contact> wall_contacts;
+
+    /**
+     * Find every grain pair and grain-wall pair closer than @p skin at the
+     * current positions (reference + u) and walls, keeping the reference
+     * state of contacts already present and initialising new ones from the
+     * reference configuration.
+     */
+    void
+    build(const Pack                  &pack,
+          const Walls                 &reference_walls,
+          const std::vector<Point<3>> &current,
+          const Walls                 &current_walls,
+          const ContactModel          &model,
+          double                       skin);
+
+    /// True if a grain or wall moved more than half the skin since build().
+    bool
+    needs_rebuild(const std::vector<Point<3>> &current,
+                  const Walls                 &current_walls,
+                  double                       extra_motion = 0.) const;
+
+    /**
+     * Recompute the reference quantities of every contact from the pack's
+     * (reference) configuration, keeping q0 and m0 but capping them at the
+     * new Coulomb limits and projecting q0 onto the new contact plane.
+     */
+    void
+    update_reference(const Pack         &pack,
+                     const Walls        &walls,
+                     const ContactModel &model);
+
+    unsigned int n_builds = 0;
+    double       skin     = 0;
+
+  private:
+    void
+    initialise(Contact            &c,
+               bool                wall,
+               const Pack         &pack,
+               const Walls        &walls,
+               const ContactModel &model) const;
+
+    std::vector<Point<3>> positions_at_build;
+    Walls                 walls_at_build;
+  };
+} // namespace sable::qusgm
+
+#endif

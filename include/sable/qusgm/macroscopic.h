@@ -1,0 +1,86 @@
+// Macroscopic strain, stress and moduli of the pack, the increments.csv
+// table, and VTU files of the grains.
+#ifndef sable_qusgm_macroscopic_h
+#define sable_qusgm_macroscopic_h
+
+#include <sable/qusgm/contact_network.h>
+#include <sable/qusgm/minimizer.h>
+#include <sable/qusgm/pack.h>
+#include <sable/qusgm/work_functional.h>
+
+#include <array>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sable::qusgm
+{
+  struct MacroscopicState
+  {
+    std::array<double, 3> strain{}; ///< (L0 - L)/L0, compression positive
+    std::array<double, 3> stress{}; ///< mean wall normal force / area
+    double confining_stress  = 0;   ///< tr(sigma)/3
+    double deviatoric_stress = 0;   ///< axial minus mean lateral
+    double sliding_ratio     = 0;
+    double coordination      = 0;   ///< mean contacts per grain
+    double solid_fraction    = 0;   ///< grain volume / box volume
+    unsigned int n_contacts  = 0;
+  };
+
+  MacroscopicState
+  measure(const Walls        &walls,
+          const std::array<double, 3> &undeformed_lengths,
+          const ContactState &state,
+          const Pack         &pack,
+          unsigned int        axis);
+
+  /**
+   * Fit isotropic Hooke's law d_sigma_l = K tr(d_eps) + 2 G dev(d_eps)_l to
+   * one stress-strain interval (least squares; the two columns are
+   * orthogonal). Returns NaN for a modulus the interval does not determine
+   * (G under isotropic strain).
+   */
+  std::pair<double, double>
+  fit_moduli(const std::array<double, 3> &d_stress,
+             const std::array<double, 3> &d_strain);
+
+  /// The increments.csv table.
+  class IncrementTable
+  {
+  public:
+    explicit IncrementTable(const std::string &filename);
+
+    void
+    write(unsigned int             increment,
+          const std::string       &stage,
+          const MacroscopicState  &m,
+          double                   bulk_modulus,
+          double                   shear_modulus,
+          const IncrementResult   &result,
+          double                   wall_time);
+
+  private:
+    std::ofstream out;
+  };
+
+  /// Grains as points with radius, coordination and residual (VTU).
+  void
+  write_grains_vtu(const std::string   &filename,
+                   const Pack          &pack,
+                   const ContactState  &state);
+  /**
+   * The force network of the committed configuration as line segments
+   * (VTU): grain centre to grain centre, or to the wall contact point, with
+   * the normal force P, the tangential force |Q| and its mobilisation
+   * |Q| / (mu P) (1: sliding).
+   */
+  void
+  write_contacts_vtu(const std::string    &filename,
+                     const Pack           &pack,
+                     const Walls          &walls,
+                     const ContactNetwork &network,
+                     const ContactModel   &model);
+} // namespace sable::qusgm
+
+#endif

@@ -1,0 +1,152 @@
+// A pack of elastic spheres (structure of arrays) and its six walls.
+#ifndef sable_qusgm_pack_h
+#define sable_qusgm_pack_h
+
+#include <deal.II/base/point.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace sable::qusgm
+{
+  using dealii::Point;
+  using dealii::Tensor;
+
+  /**
+   * Grain data as one array per quantity. `centre` is the reference
+   * configuration: the last equilibrium reached.
+   */
+  struct Pack
+  {
+    std::vector<Point<3>> centre;
+    std::vector<double>   radius;
+    std::vector<double>   youngs_modulus;
+    std::vector<double>   poisson_ratio;
+    std::vector<double>   shear_modulus;
+    std::vector<double>   density;
+
+    unsigned int
+    size() const
+    {
+      return centre.size();
+    }
+
+    void
+    add_grain(const Point<3> &x,
+              double          r,
+              double          e,
+              double          nu,
+              double          rho);
+
+    double
+    mass(const unsigned int i) const;
+
+    double
+    mean_radius() const;
+
+    double
+    max_radius() const;
+
+    double
+    mean_youngs_modulus() const;
+
+    /// Reorder the grains: new grain k is old grain permutation[k].
+    void
+    permute(const std::vector<unsigned int> &permutation);
+
+    /**
+     * Renumber the grains along a Morton (Z-order) curve of cells of about
+     * one diameter, so that neighbours in space are close in memory.
+     */
+    void
+    sort_spatially();
+
+    /// Throw InputError (naming @p source) unless every grain is valid.
+    void
+    check(const std::string &source) const;
+  };
+
+  /**
+   * Read a pack from a CSV file, one grain per line: x y z r [E nu rho]
+   * (separated by commas or blanks; lines starting with # and a header line
+   * of names are skipped). Missing material columns take the defaults.
+   */
+  Pack
+  read_pack(const std::string &filename,
+            double             default_youngs_modulus,
+            double             default_poisson_ratio,
+            double             default_density);
+
+  void
+  write_pack(const Pack &pack, const std::string &filename);
+
+  /**
+   * Six planar elastic walls aligned with the axes. Wall w < 3 is the lower
+   * wall of axis w (inward normal +e_w), wall w >= 3 the upper wall of axis
+   * w - 3 (inward normal -e_{w-3}).
+   */
+  struct Walls
+  {
+    std::array<double, 6> position{{0, 0, 0, 1, 1, 1}};
+    double                youngs_modulus = 7e12;
+    double                poisson_ratio  = 0.495;
+
+    static unsigned int
+    axis(const unsigned int w)
+    {
+      return w % 3;
+    }
+
+    /// +1 for a lower wall, -1 for an upper wall.
+    static double
+    sign(const unsigned int w)
+    {
+      return w < 3 ? 1. : -1.;
+    }
+
+    double
+    shear_modulus() const
+    {
+      return youngs_modulus / (2. * (1. + poisson_ratio));
+    }
+
+    double
+    length(const unsigned int a) const
+    {
+      return position[a + 3] - position[a];
+    }
+
+    double
+    area(const unsigned int a) const
+    {
+      return length((a + 1) % 3) * length((a + 2) % 3);
+    }
+
+    double
+    volume() const
+    {
+      return length(0) * length(1) * length(2);
+    }
+
+    Point<3>
+    centre() const;
+
+    /// Overlap of a sphere with wall w: R - (x - x_w).n_w.
+    double
+    overlap(const unsigned int w, const Point<3> &x, const double r) const
+    {
+      return r - sign(w) * (x[axis(w)] - position[w]);
+    }
+
+    /// Throw InputError unless the walls enclose a box of positive size.
+    void
+    check() const;
+  };
+
+  /// The tightest box of walls around the pack (grains just touching).
+  Walls
+  bounding_walls(const Pack &pack);
+} // namespace sable::qusgm
+
+#endif

@@ -1,0 +1,91 @@
+// The state of a QuSGM run (pack, walls, contacts, history) and one load
+// increment with its macroscopic record: shared by pack preparation, the
+// load paths and the scene runner.
+#ifndef sable_qusgm_simulation_h
+#define sable_qusgm_simulation_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <sable/qusgm/contact_network.h>
+#include <sable/qusgm/macroscopic.h>
+#include <sable/qusgm/minimizer.h>
+#include <sable/qusgm/pack.h>
+
+#include <array>
+#include <memory>
+#include <string>
+
+namespace sable::qusgm
+{
+  struct IncrementRecord
+  {
+    MacroscopicState macroscopic;
+    double           bulk_modulus  = 0;
+    double           shear_modulus = 0;
+    IncrementResult  result;
+    double           wall_time = 0;
+  };
+
+  class Simulation
+  {
+  public:
+    Simulation(const Pack              &pack,
+               const Walls             &walls,
+               const ContactModel      &model,
+               const MinimizerSettings &settings,
+               dealii::ConditionalOStream &out,
+               dealii::TimerOutput        *timer = nullptr);
+
+    /// Switch contact model (e.g. frictionless preparation to friction).
+    void
+    set_model(const ContactModel &model);
+
+    /// Write a row per increment to @p filename from now on.
+    void
+    open_table(const std::string &filename);
+
+    /// Apply wall moves, reach equilibrium, record, print a progress line.
+    const IncrementRecord &
+    step(const std::array<double, 6> &wall_moves, const std::string &stage);
+
+    /// Apply strain increments (compression positive) relative to the
+    /// undeformed box.
+    const IncrementRecord &
+    strain_step(const std::array<double, 3> &d_strain, const std::string &stage);
+
+    /// Take the current box as undeformed (zero strain).
+    void
+    reset_undeformed();
+
+    /// Rebuild contacts after radii changed.
+    void
+    radii_changed();
+
+    /// Equilibrium state of the current reference (no wall motion).
+    ContactState
+    current_state() const;
+
+    Pack                  pack;
+    Walls                 walls;
+    ContactNetwork        network;
+    ContactModel          model;
+    MinimizerSettings     settings;
+    std::array<double, 3> undeformed_lengths;
+    IncrementRecord       last;
+    unsigned int          n_increments = 0;
+    unsigned int          axis         = 2; ///< axial direction of the load path
+    std::ostream         *iteration_log = nullptr;
+
+  private:
+    dealii::ConditionalOStream      &out;
+    dealii::TimerOutput             *timer;
+    std::shared_ptr<IncrementTable>  table; // shared by copies
+    bool                             have_previous = false;
+    // The last increment's solution and wall moves, for the predictor.
+    Vector<double>                   last_theta;
+    std::array<double, 6>            last_moves{};
+  };
+} // namespace sable::qusgm
+
+#endif

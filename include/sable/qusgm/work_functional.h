@@ -1,0 +1,118 @@
+// The work functional Pi(theta) of one load increment and its exact
+// gradient (SPEC Part C, eq. 14-18).
+#ifndef sable_qusgm_work_functional_h
+#define sable_qusgm_work_functional_h
+
+#include <deal.II/lac/vector.h>
+
+#include <sable/qusgm/contact_network.h>
+#include <sable/qusgm/pack.h>
+
+#include <array>
+#include <vector>
+
+namespace sable::qusgm
+{
+  using dealii::Vector;
+
+  /// Loads and counts of a configuration (after or during an increment).
+  struct ContactState
+  {
+    std::array<double, 6>     wall_force{};   ///< normal force on each wall
+    unsigned int              n_contacts = 0; ///< grain-grain + grain-wall
+    unsigned int              n_grain_contacts = 0;
+    unsigned int              n_sliding        = 0;
+    std::vector<unsigned int> coordination; ///< contacts per grain
+    double                    max_contact_force = 0; ///< largest |P|
+    double                    mean_normal_force = 0;
+    double                    max_residual      = 0; ///< max |F_i|, |M_i|/R_i
+  };
+
+  /**
+   * Pi over the 6N unknowns theta = [u_1..u_N, Omega_1 R_1..Omega_N R_N]
+   * (u_i at 3i, Omega_i R_i at 3N + 3i) relative to the reference
+   * configuration held in the Pack and the ContactNetwork, with the walls
+   * at their current positions.
+   *
+   * Normal contacts: the Hertz energy; its gradient is the Hertz force.
+   * Tangential and torsional contacts: the Coulomb-capped springs of
+   * contact_laws.h, written in the current geometry (contact normal of the
+   * current centres, reference load rotated onto the current plane) and
+   * differentiated exactly, including the terms from the rotation of the
+   * contact plane. Reference quantities (P0, a0, A0) fix the caps,
+   * stiffnesses and lever arms, as the linearised laws prescribe; a contact
+   * carries tangential load for the whole increment if it was closed at
+   * the reference.
+   */
+  class WorkFunctional
+  {
+  public:
+    WorkFunctional(const Pack           &pack,
+                   const ContactNetwork &network,
+                   const ContactModel   &model);
+
+    void
+    set_walls(const Walls &current_walls)
+    {
+      walls = current_walls;
+    }
+
+    const Walls &
+    current_walls() const
+    {
+      return walls;
+    }
+
+    double
+    value(const Vector<double> &theta) const;
+
+    double
+    value_and_gradient(const Vector<double> &theta, Vector<double> &gradient) const;
+
+    /// Forces, counts and the residual at theta.
+    ContactState
+    state(const Vector<double> &theta) const;
+
+    /// Current centres: reference + u.
+    void
+    positions(const Vector<double> &theta, std::vector<Point<3>> &x) const;
+
+    /**
+     * Make theta the new reference: move the grains, store the current
+     * tangential loads and couples as the next increment's reference loads.
+     */
+    void
+    commit(const Vector<double> &theta,
+           Pack                 &pack,
+           ContactNetwork       &network,
+           Walls                &reference_walls) const;
+
+    /// Largest |F_i|, |M_i|/R_i over the grains for a gradient vector.
+    static double
+    max_residual(const Vector<double> &gradient);
+
+    mutable unsigned int n_evaluations = 0;
+
+    /// Set by every gradient evaluation: the largest normal force and the
+    /// largest change of a normal force since the reference.
+    mutable double last_max_contact_force = 0;
+    mutable double last_max_force_change  = 0;
+
+  private:
+
+    template <bool with_gradient>
+    double
+    evaluate(const Vector<double> &theta,
+             Vector<double>       *gradient,
+             ContactState         *state,
+             std::vector<Tensor<1, 3>> *q_out,
+             std::vector<double>       *m_out) const;
+
+    const Pack           &pack;
+    const ContactNetwork &network;
+    const ContactModel    model;
+    Walls                 walls;
+  };
+} // namespace sable::qusgm
+
+#endif

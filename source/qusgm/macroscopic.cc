@@ -1,0 +1,170 @@
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/grid/reference_cell.h>
+
+#include <sable/qusgm/macroscopic.h>
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+
+namespace sable::qusgm
+{
+  MacroscopicState
+  measure(const Walls                 &walls,
+          const std::array<double, 3> &undeformed_lengths,
+          const ContactState          &state,
+          const Pack                  &pack,
+          const unsigned int           axis)
+  {
+    const unsigned int n_grains = pack.size();
+    double             volume   = 0;
+    for (const double r : pack.radius)
+      volume += 4. / 3. * M_PI * r * r * r;
+    MacroscopicState m;
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        m.strain[a] =
+          (undeformed_lengths[a] - walls.length(a)) / undeformed_lengths[a];
+        m.stress[a] = 0.5 * (state.wall_force[a] + state.wall_force[a + 3]) /
+                      walls.area(a);
+      }
+    m.confining_stress = (m.stress[0] + m.stress[1] + m.stress[2]) / 3.;
+    m.deviatoric_stress =
+      m.stress[axis] -
+      0.5 * (m.stress[(axis + 1) % 3] + m.stress[(axis + 2) % 3]);
+    m.n_contacts = state.n_contacts;
+    m.sliding_ratio =
+      state.n_contacts > 0 ? double(state.n_sliding) / state.n_contacts : 0.;
+    double total = 0;
+    for (const unsigned int c : state.coordination)
+      total += c;
+    m.coordination   = n_grains > 0 ? total / n_grains : 0.;
+    m.solid_fraction = volume / walls.volume();
+    return m;
+  }
+
+  std::pair<double, double>
+  fit_moduli(const std::array<double, 3> &d_stress,
+             const std::array<double, 3> &d_strain)
+  {
+    const double nan   = std::numeric_limits<double>::quiet_NaN();
+    const double trace = d_strain[0] + d_strain[1] + d_strain[2];
+    double       dev2 = 0, dev_stress = 0, sum_stress = 0;
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        const double dev = d_strain[a] - trace / 3.;
+        dev2 += dev * dev;
+        dev_stress += 2. * dev * d_stress[a];
+        sum_stress += d_stress[a];
+      }
+    const double scale = std::abs(d_strain[0]) + std::abs(d_strain[1]) +
+                         std::abs(d_strain[2]);
+    const double k =
+      std::abs(trace) > 1e-9 * scale ? sum_stress / (3. * trace) : nan;
+    const double g = dev2 > 1e-18 * scale * scale ? dev_stress / (4. * dev2) : nan;
+    return {k, g};
+  }
+
+  IncrementTable::IncrementTable(const std::string &filename)
+    : out(filename)
+  {
+    out << "increment,stage,strain_x,strain_y,strain_z,stress_x,stress_y,"
+           "stress_z,confining_stress,deviatoric_stress,bulk_modulus,"
+           "shear_modulus,sliding_ratio,coordination_number,solid_fraction,contacts,"
+           "iterations,evaluations,residual,relative_residual,wall_time\n";
+  }
+
+  void
+  IncrementTable::write(const unsigned int      increment,
+                        const std::string      &stage,
+                        const MacroscopicState &m,
+                        const double            bulk_modulus,
+                        const double            shear_modulus,
+                        const IncrementResult  &result,
+                        const double            wall_time)
+  {
+    out << increment << ',' << stage << std::setprecision(10);
+    for (const double e : m.strain)
+      out << ',' << e;
+    for (const double s : m.stress)
+      out << ',' << s;
+    out << ',' << m.confining_stress << ',' << m.deviatoric_stress << ','
+        << bulk_modulus << ',' << shear_modulus << ',' << m.sliding_ratio << ','
+        << m.coordination << ',' << m.solid_fraction << ',' << m.n_contacts << ',' << result.iterations
+        << ',' << result.evaluations << ',' << result.residual << ','
+        << (result.max_contact_force > 0 ?
+              result.residual / result.max_contact_force :
+              0.)
+        << ',' << wall_time << '\n';
+    out.flush();
+  }
+
+  void
+  write_grains_vtu(const std::string  &filename,
+                   const Pack         &pack,
+                   const ContactState &state)
+  {
+    std::vector<dealii::DataOutBase::Patch<0, 3>> patches(pack.size());
+    for (unsigned int i = 0; i < pack.size(); ++i)
+      {
+        patches[i].vertices[0] = pack.centre[i];
+        patches[i].patch_index = i;
+        patches[i].data.reinit(3, 1);
+        patches[i].data(0, 0) = pack.radius[i];
+        patches[i].data(1, 0) =
+          i < state.coordination.size() ? state.coordination[i] : 0;
+        patches[i].data(2, 0) = pack.youngs_modulus[i];
+      }
+    std::ofstream out(filename);
+    dealii::DataOutBase::write_vtu(patches,
+                                   {"radius", "coordination", "youngs_modulus"},
+                                   {},
+                                   dealii::DataOutBase::VtkFlags(),
+                                   out);
+  }
+
+  void
+  write_contacts_vtu(const std::string    &filename,
+                     const Pack           &pack,
+                     const Walls          &walls,
+                     const ContactNetwork &network,
+                     const ContactModel   &model)
+  {
+    std::vector<dealii::DataOutBase::Patch<1, 3>> patches;
+    auto add = [&](const Contact &c, const Point<3> &a, const Point<3> &b,
+                   const double mu) {
+      if (c.p0 <= 0)
+        return;
+      dealii::DataOutBase::Patch<1, 3> patch;
+      patch.vertices[0]    = a;
+      patch.vertices[1]    = b;
+      patch.n_subdivisions = 1;
+      patch.reference_cell = dealii::ReferenceCells::get_hypercube<1>();
+      patch.patch_index    = patches.size();
+      patch.data.reinit(3, 2);
+      const double q = c.q0.norm();
+      for (unsigned int v = 0; v < 2; ++v)
+        {
+          patch.data(0, v) = c.p0;
+          patch.data(1, v) = q;
+          patch.data(2, v) = mu > 0 ? q / (mu * c.p0) : 0.;
+        }
+      patches.push_back(patch);
+    };
+    for (const Contact &c : network.pairs)
+      add(c, pack.centre[c.i], pack.centre[c.other], model.friction);
+    for (const Contact &c : network.wall_contacts)
+      {
+        Point<3> contact_point = pack.centre[c.i];
+        contact_point[Walls::axis(c.other)] = walls.position[c.other];
+        add(c, pack.centre[c.i], contact_point, model.wall_friction);
+      }
+    std::ofstream out(filename);
+    dealii::DataOutBase::write_vtu(patches,
+                                   {"normal_force", "tangential_force",
+                                    "friction_mobilisation"},
+                                   {},
+                                   dealii::DataOutBase::VtkFlags(),
+                                   out);
+  }
+} // namespace sable::qusgm

@@ -1,0 +1,416 @@
+#include <sable/qusgm/minimizer.h>
+
+#include <boost/math/tools/minima.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <iomanip>
+#include <limits>
+
+namespace sable::qusgm
+{
+  IncrementSolver::IncrementSolver(Pack                    &pack,
+                                   Walls                   &reference_walls,
+                                   ContactNetwork          &network,
+                                   const ContactModel      &model,
+                                   const MinimizerSettings &settings)
+    : pack(pack)
+    , reference_walls(reference_walls)
+    , network(network)
+    , model(model)
+    , settings(settings)
+    , functional(pack, network, model)
+  {}
+
+  void
+  IncrementSolver::move_walls(const std::array<double, 6> &delta,
+                              Vector<double>              &theta)
+  {
+    // Affine guess: the field that carries the old walls onto the new ones
+    // (the paper's eq. A1 for symmetric wall moves).
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        const double lower = walls.position[a], length = walls.length(a);
+        if (delta[a] == 0 && delta[a + 3] == 0)
+          continue;
+        for (unsigned int i = 0; i < pack.size(); ++i)
+          {
+            const double x = pack.centre[i][a] + theta[3 * i + a];
+            theta[3 * i + a] +=
+              delta[a] + (delta[a + 3] - delta[a]) * (x - lower) / length;
+          }
+      }
+    for (unsigned int w = 0; w < 6; ++w)
+      walls.position[w] += delta[w];
+    functional.set_walls(walls);
+  }
+
+  void
+  IncrementSolver::maybe_rebuild(const Vector<double> &theta,
+                                 IncrementResult      &result)
+  {
+    functional.positions(theta, positions);
+    const double cap_motion =
+      settings.displacement_cap * pack.max_radius() * 2.;
+    if (network.needs_rebuild(positions, walls, cap_motion))
+      {
+        network.build(pack,
+                      reference_walls,
+                      positions,
+                      walls,
+                      model,
+                      settings.skin * pack.mean_radius());
+        ++result.rebuilds;
+      }
+  }
+
+  double
+  IncrementSolver::max_step(const Vector<double> &direction) const
+  {
+    const unsigned int n     = pack.size();
+    double             ratio = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        double m = 0;
+        for (unsigned int part = 0; part < 2; ++part)
+          {
+            const unsigned int o = part * 3 * n + 3 * i;
+            m                    = std::max(m,
+                         direction[o] * direction[o] +
+                           direction[o + 1] * direction[o + 1] +
+                           direction[o + 2] * direction[o + 2]);
+          }
+        ratio = std::max(ratio, std::sqrt(m) / pack.radius[i]);
+      }
+    return ratio > 0 ? settings.displacement_cap / ratio :
+                       std::numeric_limits<double>::max();
+  }
+
+  IncrementResult
+  IncrementSolver::apply(const std::array<double, 6> &wall_displacement,
+                         std::ostream                *log,
+                         const Vector<double>        *guess)
+  {
+    IncrementResult    result;
+    const unsigned int n = pack.size();
+    const unsigned int evaluations_before = functional.n_evaluations;
+    walls                                 = reference_walls;
+    functional.set_walls(walls);
+    Vector<double> theta(6 * n), gradient(6 * n), previous_gradient(6 * n),
+      direction(6 * n), trial(6 * n), trial_gradient(6 * n);
+
+    const unsigned int n_sub = std::max(1u, settings.sub_increments);
+    std::array<double, 6> sub_delta;
+    for (unsigned int w = 0; w < 6; ++w)
+      sub_delta[w] = wall_displacement[w] / n_sub;
+    bool any_motion = false;
+    for (unsigned int w = 0; w < 6; ++w)
+      any_motion |= wall_displacement[w] != 0;
+    unsigned int applied = 0;
+    if (any_motion && guess && n_sub == 1 && guess->size() == theta.size())
+      {
+        // Predictor: the walls move at once, the grains as in the guess.
+        for (unsigned int w = 0; w < 6; ++w)
+          walls.position[w] += sub_delta[w];
+        functional.set_walls(walls);
+        theta = *guess;
+        ++applied;
+      }
+    else if (any_motion)
+      {
+        move_walls(sub_delta, theta);
+        ++applied;
+      }
+    else
+      applied = n_sub;
+    maybe_rebuild(theta, result);
+
+    // Scale of the paper's gradient test: N (E R^2)^2.
+    const double e_r2 = pack.mean_youngs_modulus() * std::pow(pack.mean_radius(), 2);
+    const double gradient_scale = n * e_r2 * e_r2;
+
+    double value = functional.value_and_gradient(theta, gradient);
+    double previous_value = value;
+    bool   restart        = true;
+    std::deque<std::pair<Vector<double>, Vector<double>>> memory;
+    unsigned int since_sub_increment = 0;
+    double       step                = 0;
+
+    if (log)
+      *log << "# iteration pi gradient_norm step active_contacts sliding_contacts\n";
+
+    for (unsigned int k = 0;; ++k)
+      {
+        // Wall sub-increment every k_inc iterations.
+        if (applied < n_sub &&
+            since_sub_increment >= settings.iterations_per_sub_increment)
+          {
+            move_walls(sub_delta, theta);
+            ++applied;
+            since_sub_increment = 0;
+            maybe_rebuild(theta, result);
+            value   = functional.value_and_gradient(theta, gradient);
+            restart = true;
+            memory.clear();
+          }
+        ++since_sub_increment;
+
+        const double g2       = gradient.norm_sqr();
+        const double residual = WorkFunctional::max_residual(gradient);
+        if (log)
+          {
+            const ContactState s = functional.state(theta);
+            *log << k << ' ' << std::setprecision(12) << value << ' '
+                 << std::sqrt(g2) << ' ' << step << ' ' << s.n_contacts << ' '
+                 << s.n_sliding << '\n';
+          }
+
+        // Stopping tests, once the walls have reached their target.
+        if (applied == n_sub)
+          {
+            std::string reason;
+            if (settings.force_tolerance > 0 &&
+                residual <=
+                  settings.force_tolerance * functional.last_max_contact_force)
+              reason = "force";
+            else if (settings.increment_force_tolerance > 0 &&
+                     residual <= settings.increment_force_tolerance *
+                                   functional.last_max_force_change)
+              reason = "increment force";
+            else if (settings.gradient_tolerance > 0 &&
+                     g2 < settings.gradient_tolerance * gradient_scale)
+              reason = "gradient";
+            else if (settings.energy_tolerance > 0 && k > 0 &&
+                     since_sub_increment > 1 && !restart &&
+                     previous_value - value <
+                       settings.energy_tolerance * std::abs(previous_value))
+              reason = "energy";
+            else if (g2 == 0)
+              reason = "zero gradient";
+            if (!reason.empty())
+              {
+                result.converged  = true;
+                result.stopped_by = reason;
+                result.iterations = k;
+                break;
+              }
+            if (k >= settings.max_iterations)
+              {
+                result.stopped_by = "iteration limit";
+                result.iterations = k;
+                break;
+              }
+          }
+
+        // Search direction.
+        bool steepest =
+          restart || (settings.method == MinimizerSettings::Method::nlcg &&
+                      settings.steepest_descent_restart > 0 &&
+                      k % settings.steepest_descent_restart == 0);
+        if (settings.method == MinimizerSettings::Method::nlcg)
+          {
+            if (steepest)
+              direction.equ(-1., gradient);
+            else
+              {
+                const double beta = g2 / previous_gradient.norm_sqr();
+                direction *= beta;
+                direction.add(-1., gradient);
+              }
+          }
+        else
+          {
+            // L-BFGS two-loop recursion.
+            direction.equ(-1., gradient);
+            std::vector<double> alpha(memory.size());
+            for (int m = int(memory.size()) - 1; m >= 0; --m)
+              {
+                const auto &[s, y] = memory[m];
+                alpha[m]           = (s * direction) / (s * y);
+                direction.add(-alpha[m], y);
+              }
+            if (!memory.empty())
+              {
+                const auto &[s, y] = memory.back();
+                direction *= (s * y) / y.norm_sqr();
+              }
+            for (unsigned int m = 0; m < memory.size(); ++m)
+              {
+                const auto  &[s, y] = memory[m];
+                const double b      = (y * direction) / (s * y);
+                direction.add(alpha[m] - b, s);
+              }
+          }
+        double slope = direction * gradient;
+        if (!(slope < 0))
+          {
+            direction.equ(-1., gradient);
+            slope = -g2;
+            memory.clear();
+            steepest = true;
+          }
+        const double alpha_max = max_step(direction);
+
+        previous_gradient = gradient;
+        previous_value    = value;
+        double alpha      = 0;
+        if (settings.method == MinimizerSettings::Method::nlcg)
+          {
+            // Exact minimisation along the direction on [0, alpha_max].
+            auto phi = [&](const double a) {
+              trial = theta;
+              trial.add(a, direction);
+              return functional.value(trial);
+            };
+            std::uintmax_t max_iter = 100;
+            const auto     best     = boost::math::tools::brent_find_minima(
+              phi, 0., alpha_max, int(settings.line_search_bits), max_iter);
+            alpha = best.first;
+            if (!(best.second < value))
+              {
+                // Near the minimum Pi is flat to round-off along the line;
+                // find the zero of the directional derivative instead
+                // (regula falsi, Illinois variant) on [0, alpha_max].
+                alpha = 0;
+                auto dphi = [&](const double a) {
+                  trial = theta;
+                  trial.add(a, direction);
+                  functional.value_and_gradient(trial, trial_gradient);
+                  return trial_gradient * direction;
+                };
+                double a_lo = 0, d_lo = slope, a_hi = alpha_max,
+                       d_hi = dphi(alpha_max);
+                if (d_hi <= 0)
+                  alpha = alpha_max;
+                else
+                  {
+                    int side = 0;
+                    for (unsigned int it = 0; it < 60; ++it)
+                      {
+                        const double a =
+                          (a_lo * d_hi - a_hi * d_lo) / (d_hi - d_lo);
+                        const double d = dphi(a);
+                        alpha          = a;
+                        if (std::abs(d) < 1e-6 * std::abs(slope))
+                          break;
+                        if (d < 0)
+                          {
+                            a_lo = a;
+                            d_lo = d;
+                            if (side == -1)
+                              d_hi *= 0.5;
+                            side = -1;
+                          }
+                        else
+                          {
+                            a_hi = a;
+                            d_hi = d;
+                            if (side == 1)
+                              d_lo *= 0.5;
+                            side = 1;
+                          }
+                      }
+                  }
+              }
+            if (alpha > 0)
+              {
+                theta.add(alpha, direction);
+                maybe_rebuild(theta, result);
+                value = functional.value_and_gradient(theta, gradient);
+              }
+          }
+        else
+          {
+            // Weak Wolfe conditions by bisection (Lewis & Overton).
+            const double c1 = 1e-4, c2 = 0.9;
+            double       lo = 0, hi = std::numeric_limits<double>::infinity();
+            double a = memory.empty() ? alpha_max : std::min(1., alpha_max);
+            double best_alpha = 0, best_value = value;
+            for (unsigned int ls = 0; ls < 50; ++ls)
+              {
+                trial = theta;
+                trial.add(a, direction);
+                const double f = functional.value_and_gradient(trial, trial_gradient);
+                if (f < best_value)
+                  {
+                    best_value = f;
+                    best_alpha = a;
+                  }
+                const double d = trial_gradient * direction;
+                // Hager-Zhang's approximate Armijo condition takes over
+                // where Pi is flat to round-off.
+                const bool decrease =
+                  f <= value + c1 * a * slope ||
+                  (std::abs(f - value) <= 1e-12 * std::abs(value) &&
+                   d <= (2 * c1 - 1) * slope);
+                if (!decrease)
+                  hi = a;
+                else if (d < c2 * slope && a < alpha_max)
+                  lo = a;
+                else
+                  {
+                    best_alpha = a;
+                    best_value = std::min(f, best_value);
+                    break;
+                  }
+                a = std::isfinite(hi) ? 0.5 * (lo + hi) : std::min(2. * a, alpha_max);
+              }
+            alpha = best_alpha;
+            if (alpha > 0)
+              {
+                theta.add(alpha, direction);
+                const double f = functional.value_and_gradient(theta, trial_gradient);
+                // Curvature pair for the inverse-Hessian model.
+                Vector<double> s(direction);
+                s *= alpha;
+                Vector<double> y(trial_gradient);
+                y -= gradient;
+                if (s * y > 1e-12 * s.l2_norm() * y.l2_norm())
+                  {
+                    memory.emplace_back(std::move(s), std::move(y));
+                    if (memory.size() > settings.lbfgs_history)
+                      memory.pop_front();
+                  }
+                value    = f;
+                gradient = trial_gradient;
+                functional.positions(theta, positions);
+                if (network.needs_rebuild(positions, walls,
+                                          settings.displacement_cap *
+                                            pack.max_radius() * 2.))
+                  {
+                    maybe_rebuild(theta, result);
+                    value = functional.value_and_gradient(theta, gradient);
+                  }
+              }
+          }
+        step = alpha;
+        if (alpha == 0)
+          {
+            if (steepest)
+              {
+                // No descent even along -grad: converged to round-off.
+                result.converged  = false;
+                result.stopped_by = "line search stalled";
+                result.iterations = k;
+                if (applied == n_sub)
+                  break;
+              }
+            restart = true;
+            memory.clear();
+            continue;
+          }
+        restart = false;
+      }
+
+    last_state               = functional.state(theta);
+    result.value             = value;
+    result.gradient_norm     = gradient.l2_norm();
+    result.residual          = last_state.max_residual;
+    result.max_contact_force = last_state.max_contact_force;
+    result.evaluations       = functional.n_evaluations - evaluations_before;
+    last_solution            = theta;
+    functional.commit(theta, pack, network, reference_walls);
+    return result;
+  }
+} // namespace sable::qusgm

@@ -1,0 +1,163 @@
+#include <sable/qusgm/load_path.h>
+#include <sable/qusgm/simulation.h>
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+
+namespace sable::qusgm
+{
+  Simulation::Simulation(const Pack                 &pack,
+                         const Walls                &walls,
+                         const ContactModel         &model,
+                         const MinimizerSettings    &settings,
+                         dealii::ConditionalOStream &out,
+                         dealii::TimerOutput        *timer)
+    : pack(pack)
+    , walls(walls)
+    , model(model)
+    , settings(settings)
+    , out(out)
+    , timer(timer)
+  {
+    reset_undeformed();
+  }
+
+  void
+  Simulation::set_model(const ContactModel &new_model)
+  {
+    model = new_model;
+    network.update_reference(pack, walls, model);
+    last_theta.reinit(0);
+  }
+
+  void
+  Simulation::open_table(const std::string &filename)
+  {
+    table = std::make_shared<IncrementTable>(filename);
+  }
+
+  void
+  Simulation::reset_undeformed()
+  {
+    for (unsigned int a = 0; a < 3; ++a)
+      undeformed_lengths[a] = walls.length(a);
+  }
+
+  void
+  Simulation::radii_changed()
+  {
+    last_theta.reinit(0);
+    network = ContactNetwork();
+    network.build(pack,
+                  walls,
+                  pack.centre,
+                  walls,
+                  model,
+                  settings.skin * pack.mean_radius());
+  }
+
+  ContactState
+  Simulation::current_state() const
+  {
+    ContactNetwork copy = network;
+    copy.build(pack, walls, pack.centre, walls, model,
+               settings.skin * pack.mean_radius());
+    WorkFunctional functional(pack, copy, model);
+    functional.set_walls(walls);
+    return functional.state(Vector<double>(6 * pack.size()));
+  }
+
+  const IncrementRecord &
+  Simulation::strain_step(const std::array<double, 3> &d_strain,
+                          const std::string           &stage)
+  {
+    return step(LoadPath::wall_moves(d_strain, undeformed_lengths), stage);
+  }
+
+  const IncrementRecord &
+  Simulation::step(const std::array<double, 6> &wall_moves,
+                   const std::string           &stage)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    std::array<double, 3> length_before, stress_before = last.macroscopic.stress;
+    for (unsigned int a = 0; a < 3; ++a)
+      length_before[a] = walls.length(a);
+
+    IncrementRecord record;
+    {
+      std::unique_ptr<dealii::TimerOutput::Scope> scope;
+      if (timer)
+        scope = std::make_unique<dealii::TimerOutput::Scope>(*timer, "equilibrium (" + stage + ")");
+      IncrementSolver solver(pack, walls, network, model, settings);
+      // Predictor: if the walls repeat the last move (up to a positive
+      // factor), start from the last solution times that factor.
+      Vector<double> guess;
+      if (settings.predictor && last_theta.size() == 6 * pack.size())
+        {
+          double dot = 0, previous = 0, current = 0;
+          for (unsigned int w = 0; w < 6; ++w)
+            {
+              dot += wall_moves[w] * last_moves[w];
+              previous += last_moves[w] * last_moves[w];
+              current += wall_moves[w] * wall_moves[w];
+            }
+          if (previous > 0 && dot > 0 &&
+              std::abs(dot * dot - previous * current) <= 1e-12 * previous * current)
+            {
+              guess = last_theta;
+              guess *= dot / previous;
+            }
+        }
+      record.result = solver.apply(wall_moves, iteration_log,
+                                   guess.size() ? &guess : nullptr);
+      last_theta = solver.solution();
+      last_moves = wall_moves;
+      record.macroscopic =
+        measure(walls, undeformed_lengths, solver.state(), pack, axis);
+    }
+    // Moduli of this interval: strain increments relative to the box
+    // before the increment.
+    std::array<double, 3> d_stress, d_strain;
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        d_strain[a] = (length_before[a] - walls.length(a)) / length_before[a];
+        d_stress[a] = record.macroscopic.stress[a] - stress_before[a];
+      }
+    const auto moduli    = fit_moduli(d_stress, d_strain);
+    record.bulk_modulus  = have_previous ? moduli.first : std::nan("");
+    record.shear_modulus = have_previous ? moduli.second : std::nan("");
+    record.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+        .count();
+    have_previous = true;
+    ++n_increments;
+    last = record;
+    if (table)
+      table->write(n_increments,
+                   stage,
+                   record.macroscopic,
+                   record.bulk_modulus,
+                   record.shear_modulus,
+                   record.result,
+                   record.wall_time);
+
+    const auto &m = record.macroscopic;
+    out << std::setw(5) << n_increments << ' ' << std::left << std::setw(12)
+        << stage << std::right << std::fixed << std::setprecision(3)
+        << " sigma_c " << std::setw(8) << m.confining_stress * 1e-6 << " MPa"
+        << "  sigma_d " << std::setw(8) << m.deviatoric_stress * 1e-6 << " MPa"
+        << "  K " << std::setw(7) << record.bulk_modulus * 1e-9 << " GPa"
+        << "  G " << std::setw(7) << record.shear_modulus * 1e-9 << " GPa"
+        << "  Z " << std::setprecision(2) << m.coordination << "  sliding "
+        << std::setprecision(3) << m.sliding_ratio << "  it "
+        << record.result.iterations << std::scientific << std::setprecision(1)
+        << "  res/F " << record.result.residual /
+                           std::max(record.result.max_contact_force, 1e-300)
+        << std::fixed << std::setprecision(2) << "  " << record.wall_time
+        << " s" << (record.result.converged ? "" : "  (not converged: " +
+                                                    record.result.stopped_by + ")")
+        << std::defaultfloat << std::endl;
+    return last;
+  }
+} // namespace sable::qusgm

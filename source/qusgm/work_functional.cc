@@ -1,0 +1,346 @@
+#include <sable/qusgm/contact_laws.h>
+#include <sable/qusgm/work_functional.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sable::qusgm
+{
+  using namespace contact_laws;
+
+  namespace
+  {
+    inline Tensor<1, 3>
+    block(const Vector<double> &v, const unsigned int offset)
+    {
+      Tensor<1, 3> t;
+      t[0] = v[offset];
+      t[1] = v[offset + 1];
+      t[2] = v[offset + 2];
+      return t;
+    }
+
+    inline void
+    add_block(Vector<double>     &v,
+              const unsigned int  offset,
+              const Tensor<1, 3> &t,
+              const double        factor)
+    {
+      v[offset] += factor * t[0];
+      v[offset + 1] += factor * t[1];
+      v[offset + 2] += factor * t[2];
+    }
+  } // namespace
+
+  WorkFunctional::WorkFunctional(const Pack           &pack,
+                                 const ContactNetwork &network,
+                                 const ContactModel   &model)
+    : pack(pack)
+    , network(network)
+    , model(model)
+  {}
+
+  double
+  WorkFunctional::value(const Vector<double> &theta) const
+  {
+    return evaluate<false>(theta, nullptr, nullptr, nullptr, nullptr);
+  }
+
+  double
+  WorkFunctional::value_and_gradient(const Vector<double> &theta,
+                                     Vector<double>       &gradient) const
+  {
+    return evaluate<true>(theta, &gradient, nullptr, nullptr, nullptr);
+  }
+
+  ContactState
+  WorkFunctional::state(const Vector<double> &theta) const
+  {
+    ContactState   s;
+    Vector<double> gradient(theta.size());
+    evaluate<true>(theta, &gradient, &s, nullptr, nullptr);
+    s.max_residual = max_residual(gradient);
+    return s;
+  }
+
+  void
+  WorkFunctional::positions(const Vector<double>  &theta,
+                            std::vector<Point<3>> &x) const
+  {
+    const unsigned int n = pack.size();
+    x.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      x[i] = pack.centre[i] + block(theta, 3 * i);
+  }
+
+  double
+  WorkFunctional::max_residual(const Vector<double> &gradient)
+  {
+    const unsigned int n = gradient.size() / 6;
+    double             r = 0;
+    for (unsigned int k = 0; k < 2 * n; ++k)
+      r = std::max(r, block(gradient, 3 * k).norm_square());
+    return std::sqrt(r);
+  }
+
+  template <bool with_gradient>
+  double
+  WorkFunctional::evaluate(const Vector<double>      &theta,
+                           Vector<double>            *gradient,
+                           ContactState              *state,
+                           std::vector<Tensor<1, 3>> *q_out,
+                           std::vector<double>       *m_out) const
+  {
+    ++n_evaluations;
+    const unsigned int n        = pack.size();
+    const unsigned int rot      = 3 * n;
+    const bool         friction = model.frictional();
+    const bool         torsion  = friction && model.torsion;
+    if (with_gradient)
+      *gradient = 0.;
+    if (state)
+      state->coordination.assign(n, 0);
+    double pi      = 0;
+    double sum_p   = 0;
+    double max_p   = 0;
+    double max_dp  = 0;
+
+    // Grain-grain contacts.
+    for (std::size_t k = 0; k < network.pairs.size(); ++k)
+      {
+        const Contact     &c = network.pairs[k];
+        const unsigned int i = c.i, j = c.other;
+        const Tensor<1, 3> u_i = block(theta, 3 * i), u_j = block(theta, 3 * j);
+        const Tensor<1, 3> r =
+          (pack.centre[i] + u_i) - (pack.centre[j] + u_j);
+        const double d = r.norm();
+        const double h = pack.radius[i] + pack.radius[j] - d;
+        const double h0 = c.h0;
+        pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, h0);
+        const Tensor<1, 3> n_ij = r / d;
+        Tensor<1, 3>       force_i; // force on i, except the normal part
+        Tensor<1, 3>       g;       // dW/dn at fixed u, Omega
+        Tensor<1, 3>       moment_i, moment_j;
+        if (h > 0)
+          {
+            const double p = hertz_force(c.k_n, h);
+            if (with_gradient)
+              {
+                add_block(*gradient, 3 * i, n_ij, -p);
+                add_block(*gradient, 3 * j, n_ij, p);
+                max_p  = std::max(max_p, p);
+                max_dp = std::max(max_dp, std::abs(p - c.p0));
+              }
+            if (state)
+              {
+                ++state->n_contacts;
+                ++state->n_grain_contacts;
+                ++state->coordination[i];
+                ++state->coordination[j];
+                state->max_contact_force = std::max(state->max_contact_force, p);
+                sum_p += p;
+              }
+          }
+        if (!friction || c.p0 <= 0 || c.k_s <= 0)
+          continue;
+
+        const Tensor<1, 3> omega_i = block(theta, rot + 3 * i) / pack.radius[i];
+        const Tensor<1, 3> omega_j = block(theta, rot + 3 * j) / pack.radius[j];
+        const Tensor<1, 3> du      = u_i - u_j;
+        const Tensor<1, 3> lever_omega = c.lever_i * omega_i + c.lever_j * omega_j;
+        const double       du_n        = n_ij * du;
+        // u_s = T du + Omega_i x R_ij - Omega_j x R_ji with R_ij = -lever_i n,
+        // R_ji = lever_j n.
+        const Tensor<1, 3> u_s =
+          du - du_n * n_ij - dealii::cross_product_3d(lever_omega, n_ij);
+
+        // Reference load rotated onto the current contact plane.
+        const double       q0_norm = c.q0.norm();
+        const double       q0_n    = c.q0 * n_ij;
+        const Tensor<1, 3> v       = c.q0 - q0_n * n_ij;
+        const double       v_norm  = v.norm();
+        const Tensor<1, 3> q_p =
+          v_norm > 0 ? (q0_norm / v_norm) * v : Tensor<1, 3>();
+
+        const Tensor<1, 3> y = q_p - c.k_s * u_s;
+        const Tensor<1, 3> q = capped_force(y, c.q_max);
+        pi -= (capped_potential(q_p, c.q_max) - capped_potential(y, c.q_max)) /
+              c.k_s;
+        if (state && h > 0 && y.norm() > c.q_max)
+          ++state->n_sliding;
+        if (q_out)
+          (*q_out)[k] = q;
+        if (with_gradient)
+          {
+            force_i = q;
+            g       = -du_n * q - dealii::cross_product_3d(q, lever_omega);
+            if (v_norm > 0)
+              {
+                const Tensor<1, 3> dq   = (q_p - q) / c.k_s;
+                const Tensor<1, 3> v_hat = v / v_norm;
+                const Tensor<1, 3> e =
+                  (q0_norm / v_norm) * (dq - (v_hat * dq) * v_hat);
+                g += -q0_n * e - (e * n_ij) * c.q0;
+              }
+            const Tensor<1, 3> n_cross_q = dealii::cross_product_3d(n_ij, q);
+            moment_i = -c.lever_i * n_cross_q;
+            moment_j = -c.lever_j * n_cross_q;
+          }
+
+        if (torsion && c.k_t > 0)
+          {
+            const Tensor<1, 3> d_omega = omega_i - omega_j;
+            const double       omega_t = d_omega * n_ij;
+            const double       y_t     = c.m0 - c.k_t * omega_t;
+            const double       m       = capped_force(y_t, c.m_max);
+            pi -= (capped_potential(c.m0, c.m_max) -
+                   capped_potential(y_t, c.m_max)) /
+                  c.k_t;
+            if (m_out)
+              (*m_out)[k] = m;
+            if (with_gradient)
+              {
+                moment_i += m * n_ij;
+                moment_j -= m * n_ij;
+                g += m * d_omega;
+              }
+          }
+        if (with_gradient)
+          {
+            // Chain rule through n = r/|r|: dn/dr = (I - n n)/d.
+            force_i += (g - (g * n_ij) * n_ij) / d;
+            add_block(*gradient, 3 * i, force_i, -1.);
+            add_block(*gradient, 3 * j, force_i, 1.);
+            add_block(*gradient, rot + 3 * i, moment_i, -1. / pack.radius[i]);
+            add_block(*gradient, rot + 3 * j, moment_j, -1. / pack.radius[j]);
+          }
+      }
+
+    // Grain-wall contacts: the wall normal is fixed and walls move only
+    // along it, so the tangential displacement is linear in theta.
+    const std::size_t n_pairs = network.pairs.size();
+    for (std::size_t k = 0; k < network.wall_contacts.size(); ++k)
+      {
+        const Contact     &c   = network.wall_contacts[k];
+        const unsigned int i   = c.i, w = c.other;
+        const unsigned int ax  = Walls::axis(w);
+        const double       sgn = Walls::sign(w);
+        const Tensor<1, 3> u_i = block(theta, 3 * i);
+        const double       h =
+          walls.overlap(w, pack.centre[i] + u_i, pack.radius[i]);
+        pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, c.h0);
+        if (h > 0)
+          {
+            const double p = hertz_force(c.k_n, h);
+            if (with_gradient)
+              {
+                (*gradient)[3 * i + ax] -= sgn * p;
+                max_p  = std::max(max_p, p);
+                max_dp = std::max(max_dp, std::abs(p - c.p0));
+              }
+            if (state)
+              {
+                ++state->n_contacts;
+                ++state->coordination[i];
+                state->wall_force[w] += p;
+                state->max_contact_force = std::max(state->max_contact_force, p);
+                sum_p += p;
+              }
+          }
+        if (!friction || c.p0 <= 0 || c.k_s <= 0)
+          continue;
+        Tensor<1, 3> n_w;
+        n_w[ax]                    = sgn;
+        const Tensor<1, 3> omega_i = block(theta, rot + 3 * i) / pack.radius[i];
+        Tensor<1, 3>       u_s     = u_i - (u_i * n_w) * n_w -
+                           c.lever_i * dealii::cross_product_3d(omega_i, n_w);
+        const Tensor<1, 3> y = c.q0 - c.k_s * u_s;
+        const Tensor<1, 3> q = capped_force(y, c.q_max);
+        pi -= (capped_potential(c.q0, c.q_max) - capped_potential(y, c.q_max)) /
+              c.k_s;
+        if (state && h > 0 && y.norm() > c.q_max)
+          ++state->n_sliding;
+        if (q_out)
+          (*q_out)[n_pairs + k] = q;
+        Tensor<1, 3> moment_i;
+        if (with_gradient)
+          {
+            add_block(*gradient, 3 * i, q, -1.);
+            moment_i = -c.lever_i * dealii::cross_product_3d(n_w, q);
+          }
+        if (torsion && c.k_t > 0)
+          {
+            const double omega_t = omega_i * n_w;
+            const double y_t     = c.m0 - c.k_t * omega_t;
+            const double m       = capped_force(y_t, c.m_max);
+            pi -= (capped_potential(c.m0, c.m_max) -
+                   capped_potential(y_t, c.m_max)) /
+                  c.k_t;
+            if (m_out)
+              (*m_out)[n_pairs + k] = m;
+            if (with_gradient)
+              moment_i += m * n_w;
+          }
+        if (with_gradient)
+          add_block(*gradient, rot + 3 * i, moment_i, -1. / pack.radius[i]);
+      }
+
+    // Weight, along -z.
+    if (model.gravity)
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const double weight = pack.mass(i) * model.gravity_acceleration;
+          pi += weight * theta[3 * i + 2];
+          if (with_gradient)
+            (*gradient)[3 * i + 2] += weight;
+        }
+    if (state && state->n_contacts > 0)
+      state->mean_normal_force = sum_p / state->n_contacts;
+    if (with_gradient)
+      {
+        last_max_contact_force = max_p;
+        last_max_force_change  = max_dp;
+      }
+    return pi;
+  }
+
+  void
+  WorkFunctional::commit(const Vector<double> &theta,
+                         Pack                 &pack_to_move,
+                         ContactNetwork       &network_to_update,
+                         Walls                &reference_walls) const
+  {
+    const std::size_t n_pairs = network.pairs.size();
+    const std::size_t n_all   = n_pairs + network.wall_contacts.size();
+    std::vector<Tensor<1, 3>> q(n_all);
+    std::vector<double>       m(n_all, 0.);
+    evaluate<false>(theta, nullptr, nullptr, &q, &m);
+    for (std::size_t k = 0; k < n_pairs; ++k)
+      {
+        network_to_update.pairs[k].q0 = q[k];
+        network_to_update.pairs[k].m0 = m[k];
+      }
+    for (std::size_t k = 0; k < network.wall_contacts.size(); ++k)
+      {
+        network_to_update.wall_contacts[k].q0 = q[n_pairs + k];
+        network_to_update.wall_contacts[k].m0 = m[n_pairs + k];
+      }
+    for (unsigned int i = 0; i < pack_to_move.size(); ++i)
+      pack_to_move.centre[i] += block(theta, 3 * i);
+    reference_walls = walls;
+    network_to_update.update_reference(pack_to_move, reference_walls, model);
+  }
+
+  template double
+  WorkFunctional::evaluate<true>(const Vector<double> &,
+                                 Vector<double> *,
+                                 ContactState *,
+                                 std::vector<Tensor<1, 3>> *,
+                                 std::vector<double> *) const;
+  template double
+  WorkFunctional::evaluate<false>(const Vector<double> &,
+                                  Vector<double> *,
+                                  ContactState *,
+                                  std::vector<Tensor<1, 3>> *,
+                                  std::vector<double> *) const;
+} // namespace sable::qusgm
