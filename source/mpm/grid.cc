@@ -31,6 +31,7 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       huge[d] = std::numeric_limits<double>::max();
     spacing.assign(n_relevant_nodes(), huge);
+    positions.assign(n_relevant_nodes(), Point<dim>());
     std::vector<types::global_dof_index> dofs(nodes_per_cell);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
@@ -38,7 +39,10 @@ namespace sable::mpm
           CellData &data = cells[cell->active_cell_index()];
           cell->get_dof_indices(dofs);
           for (unsigned int v = 0; v < nodes_per_cell; ++v)
-            data.nodes[v] = node_partitioner->global_to_local(dofs[v]);
+            {
+              data.nodes[v]             = node_partitioner->global_to_local(dofs[v]);
+              positions[data.nodes[v]] = cell->vertex(v);
+            }
           for (unsigned int d = 0; d < dim; ++d)
             {
               const double h = cell->extent_in_direction(d);

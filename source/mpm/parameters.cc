@@ -389,6 +389,13 @@ namespace sable::mpm
                       Patterns::Double(0),
                       "Simulated time between particle VTU files, s "
                       "(0: no particle output).");
+    prm.declare_entry("Contact node output",
+                      "false",
+                      Patterns::Bool(),
+                      "With each particle output, write the contact nodes "
+                      "(contact_nodes_NNNNN.pvtu): per body at each node its "
+                      "normal, contact force and state (0 free, 1 stick, "
+                      "2 slip).");
     prm.declare_entry("Statistics interval",
                       "1",
                       Patterns::Integer(1),
@@ -664,6 +671,7 @@ namespace sable::mpm
 
     prm.enter_subsection("Output");
     p.output_interval     = prm.get_double("Particle output interval");
+    p.contact_node_output = prm.get_bool("Contact node output");
     p.statistics_interval = prm.get_integer("Statistics interval");
     p.progress_interval   = prm.get_integer("Progress interval");
     p.energy_growth_limit = prm.get_double("Energy growth limit");

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -927,6 +928,8 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       interpretation[layout.velocity + d] = DataComponentInterpretation::component_is_part_of_vector;
     data_out.build_patches(*particle_handler, names, interpretation);
+    if (use_contact && parameters.contact_node_output)
+      write_contact_nodes(output_counter);
     const std::string name = data_out.write_vtu_with_pvtu_record(
       parameters.output_directory + "/", "particles", output_counter++, communicator, 5);
     particle_files.emplace_back(time, name);
@@ -936,6 +939,95 @@ namespace sable::mpm
         DataOutBase::write_pvd_record(pvd, particle_files);
       }
     next_output_time = time + parameters.output_interval;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::write_contact_nodes(const unsigned int counter)
+  {
+    // one point per body record at each locally owned contact node, as an
+    // unstructured grid of vertices (ASCII: these files are small)
+    const unsigned int n_owned_nodes =
+      nodal_data.get_partitioner()->locally_owned_size() / (1 + 2 * dim);
+    std::vector<const typename BodyFields<dim>::Record *> records;
+    std::vector<unsigned int>                             nodes;
+    for (const unsigned int node : body_fields.get_contact_nodes())
+      if (node < n_owned_nodes)
+        {
+          const auto [begin, end] = body_fields.node_records(node);
+          for (auto *r = begin; r != end; ++r)
+            {
+              records.push_back(r);
+              nodes.push_back(node);
+            }
+        }
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    const std::string  stem    = "contact_nodes_" + Utilities::int_to_string(counter, 5);
+    const auto         piece   = [&](const unsigned int r) {
+      return stem + "." + Utilities::int_to_string(r, 4) + ".vtu";
+    };
+    {
+      std::ofstream out(parameters.output_directory + "/" + piece(rank));
+      out << std::setprecision(9);
+      const unsigned int n = records.size();
+      out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
+          << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
+          << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+      for (const unsigned int node : nodes)
+        {
+          const Point<dim> &x = grid.node_positions()[node];
+          out << x[0] << ' ' << x[1] << ' ' << (dim == 3 ? x[dim - 1] : 0.) << '\n';
+        }
+      out << "</DataArray></Points>\n<Cells>\n"
+          << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+      for (unsigned int i = 0; i < n; ++i)
+        out << i << '\n';
+      out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+      for (unsigned int i = 0; i < n; ++i)
+        out << i + 1 << '\n';
+      out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+      for (unsigned int i = 0; i < n; ++i)
+        out << "1\n";
+      out << "</DataArray>\n</Cells>\n<PointData>\n"
+          << "<DataArray type=\"Int32\" Name=\"body\" format=\"ascii\">\n";
+      for (const auto *r : records)
+        out << r->body << '\n';
+      out << "</DataArray>\n<DataArray type=\"Int32\" Name=\"state\" format=\"ascii\">\n";
+      for (const auto *r : records)
+        out << r->state << '\n';
+      out << "</DataArray>\n";
+      for (const std::string field : {"normal", "contact_force"})
+        {
+          out << "<DataArray type=\"Float64\" Name=\"" << field
+              << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+          for (const auto *r : records)
+            {
+              const Tensor<1, dim> &t = field == "normal" ? r->normal : r->contact_force;
+              out << t[0] << ' ' << t[1] << ' ' << (dim == 3 ? t[dim - 1] : 0.) << '\n';
+            }
+          out << "</DataArray>\n";
+        }
+      out << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+    }
+    if (rank != 0)
+      return;
+    {
+      std::ofstream out(parameters.output_directory + "/" + stem + ".pvtu");
+      out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\">\n"
+          << "<PUnstructuredGrid GhostLevel=\"0\">\n<PPoints><PDataArray type=\"Float64\" "
+             "NumberOfComponents=\"3\"/></PPoints>\n<PPointData>\n"
+          << "<PDataArray type=\"Int32\" Name=\"body\"/>\n<PDataArray type=\"Int32\" Name=\"state\"/>\n"
+          << "<PDataArray type=\"Float64\" Name=\"normal\" NumberOfComponents=\"3\"/>\n"
+          << "<PDataArray type=\"Float64\" Name=\"contact_force\" NumberOfComponents=\"3\"/>\n"
+          << "</PPointData>\n";
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        out << "<Piece Source=\"" << piece(r) << "\"/>\n";
+      out << "</PUnstructuredGrid>\n</VTKFile>\n";
+    }
+    contact_node_files.emplace_back(time, stem + ".pvtu");
+    std::ofstream pvd(parameters.output_directory + "/contact_nodes.pvd");
+    DataOutBase::write_pvd_record(pvd, contact_node_files);
   }
 
   template <int dim>

@@ -67,6 +67,13 @@ namespace sable::mpm
       return spacing;
     }
 
+    /// Position of each relevant node.
+    const std::vector<Point<dim>> &
+    node_positions() const
+    {
+      return positions;
+    }
+
     /// Smallest cell extent over the whole grid (all ranks).
     double
     minimum_cell_size() const
@@ -102,6 +109,7 @@ namespace sable::mpm
     std::shared_ptr<const Utilities::MPI::Partitioner> node_partitioner;
     std::vector<CellData> cells;
     std::vector<Tensor<1, dim>> spacing;
+    std::vector<Point<dim>>     positions;
     double                min_cell_size = 0.;
   };
 } // namespace sable::mpm

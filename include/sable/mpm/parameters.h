@@ -160,6 +160,8 @@ namespace sable::mpm
     /// Directory of all output; empty: write nothing.
     std::string  output_directory    = "";
     double       output_interval     = 0.; ///< particle VTU; 0 = off
+    /// with the particle output, also the contact nodes (VTU)
+    bool         contact_node_output = false;
     unsigned int statistics_interval = 1;  ///< steps between CSV rows
     unsigned int progress_interval   = 100;
     bool         print_timings       = true;

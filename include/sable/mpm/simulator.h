@@ -142,6 +142,8 @@ namespace sable::mpm
     void
     write_particles();
     void
+    write_contact_nodes(const unsigned int counter);
+    void
     check_energy(const Statistics<dim> &statistics);
     /// Stop all ranks if any flagged a problem at @p location.
     void
@@ -195,6 +197,7 @@ namespace sable::mpm
 
     std::unique_ptr<StatisticsFile<dim>>              statistics_file;
     std::vector<std::pair<double, std::string>>       particle_files;
+    std::vector<std::pair<double, std::string>>       contact_node_files;
     double                                            next_output_time = 0;
     unsigned int                                      output_counter   = 0;
   };

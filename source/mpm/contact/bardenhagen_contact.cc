@@ -195,6 +195,13 @@ namespace sable::mpm
           {
             Record &r = begin[a];
             r.new_velocity += scale * change[a];
+            if (record_forces)
+              {
+                r.normal        = normal[a];
+                r.contact_force = r.mass * scale * change[a] / dt;
+                r.state         = change[a].norm() == 0 ? 0 :
+                                  tangential_change[a] < tangential_speed[a] ? 2 : 1;
+              }
             if (!owned)
               continue;
             defect += r.mass * scale * change[a];

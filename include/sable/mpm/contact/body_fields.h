@@ -38,6 +38,12 @@ namespace sable::mpm
       SymmetricTensor<2, dim> mass_stress;
       Tensor<1, dim>          old_velocity;
       Tensor<1, dim>          new_velocity;
+      /// set by the contact pass after the momentum update, for output:
+      /// the body's normal, the contact force on it, and its state
+      /// (0 free, 1 stick, 2 slip)
+      Tensor<1, dim> normal;
+      Tensor<1, dim> contact_force;
+      unsigned int   state;
     };
 
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
