@@ -357,7 +357,7 @@ namespace sable::mpm
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = i; j < dim; ++j)
                 record.mass_stress[i][j] +=
-                  weight * props[layout.stress + (i == j ? i : (i + j == 1 ? 3u : (i + j == 2 ? 4u : 5u)))];
+                  weight * props[layout.stress + ParticleLayout<dim>::stress_component(i, j)];
         }
     };
     const auto cell_touches_contact = [&](const typename Grid<dim>::CellData &data) {
@@ -369,10 +369,6 @@ namespace sable::mpm
     nodal_data = 0.;
     nodal_data.zero_out_ghost_values();
     double *const grid_values = nodal_data.get_values();
-    const auto    stress_index = [](const unsigned int i, const unsigned int j) {
-      // unrolled (xx yy zz xy xz yz) index of the in-plane components
-      return i == j ? i : (i + j == 1 ? 3u : (i + j == 2 ? 4u : 5u));
-    };
 
     // the material extent around each node for friction walls that act
     // only where material reaches them (lowest coordinate, minus highest)
@@ -400,10 +396,7 @@ namespace sable::mpm
             const double mass = props[layout.mass];
             if (with_extent)
               {
-                Tensor<2, dim> F;
-                for (unsigned int i = 0; i < dim; ++i)
-                  for (unsigned int j = 0; j < dim; ++j)
-                    F[i][j] = props[layout.deformation + i * dim + j];
+                const Tensor<2, dim> F = ParticleLayout<dim>::deformation_gradient(props);
                 // half the edge of the point's current volume
                 const double half =
                   0.5 * std::pow(determinant(F) * props[layout.initial_volume], 1. / dim);
@@ -416,19 +409,9 @@ namespace sable::mpm
                       e[1]            = std::min(e[1], -(x[d] + half));
                     }
               }
-            // internal force -V sigma . grad N, V = det(F) V0
-            Tensor<2, dim> volume_stress;
-            if (with_forces)
-              {
-                Tensor<2, dim> F;
-                for (unsigned int i = 0; i < dim; ++i)
-                  for (unsigned int j = 0; j < dim; ++j)
-                    F[i][j] = props[layout.deformation + i * dim + j];
-                const double volume = determinant(F) * props[layout.initial_volume];
-                for (unsigned int i = 0; i < dim; ++i)
-                  for (unsigned int j = 0; j < dim; ++j)
-                    volume_stress[i][j] = volume * props[layout.stress + stress_index(i, j)];
-              }
+            // internal force -V sigma . grad N
+            const Tensor<2, dim> volume_stress =
+              with_forces ? ParticleLayout<dim>::volume_stress(props) : Tensor<2, dim>();
             if (use_contact && cell_touches_contact(data))
               scatter_to_bodies(particle, data, shape, volume_stress);
             for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
@@ -461,19 +444,11 @@ namespace sable::mpm
             {
               const auto props = particle.get_properties();
               shape.evaluate(particle.get_reference_location(), data.inverse_h);
-              Tensor<2, dim> volume_stress;
-              if (with_forces)
-                {
-                  Tensor<2, dim> F;
-                  for (unsigned int i = 0; i < dim; ++i)
-                    for (unsigned int j = 0; j < dim; ++j)
-                      F[i][j] = props[layout.deformation + i * dim + j];
-                  const double volume = determinant(F) * props[layout.initial_volume];
-                  for (unsigned int i = 0; i < dim; ++i)
-                    for (unsigned int j = 0; j < dim; ++j)
-                      volume_stress[i][j] = volume * props[layout.stress + stress_index(i, j)];
-                }
-              scatter_to_bodies(particle, data, shape, volume_stress);
+              scatter_to_bodies(particle,
+                                data,
+                                shape,
+                                with_forces ? ParticleLayout<dim>::volume_stress(props) :
+                                              Tensor<2, dim>());
             }
         }
     nodal_data.compress(VectorOperation::add);
@@ -638,10 +613,7 @@ namespace sable::mpm
               }
             if (update_stresses)
               {
-                Tensor<2, dim> F;
-                for (unsigned int i = 0; i < dim; ++i)
-                  for (unsigned int j = 0; j < dim; ++j)
-                    F[i][j] = props[layout.deformation + i * dim + j];
+                Tensor<2, dim> F = ParticleLayout<dim>::deformation_gradient(props);
                 Tensor<2, dim> identity;
                 for (unsigned int d = 0; d < dim; ++d)
                   identity[d][d] = 1.;
@@ -649,9 +621,7 @@ namespace sable::mpm
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = 0; j < dim; ++j)
                     props[layout.deformation + i * dim + j] = F[i][j];
-                SymmetricTensor<2, 3> stress;
-                for (unsigned int c = 0; c < 6; ++c)
-                  stress.access_raw_entry(c) = props[layout.stress + c];
+                SymmetricTensor<2, 3> stress = ParticleLayout<dim>::stress_tensor(props);
                 materials[body]->update_stress(embed<dim>(L, 0.),
                                                embed<dim>(F, 1.),
                                                time_step,
@@ -787,15 +757,10 @@ namespace sable::mpm
         for (unsigned int d = 0; d < dim; ++d)
           v2 += props[layout.velocity + d] * props[layout.velocity + d];
         sums[0] += 0.5 * mass * v2;
-        Tensor<2, dim> F;
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = 0; j < dim; ++j)
-            F[i][j] = props[layout.deformation + i * dim + j];
-        SymmetricTensor<2, 3> stress;
-        for (unsigned int c = 0; c < 6; ++c)
-          stress.access_raw_entry(c) = props[layout.stress + c];
         sums[1] += props[layout.initial_volume] *
-                   materials[body]->strain_energy_density(stress, embed<dim>(F, 1.));
+                   materials[body]->strain_energy_density(
+                     ParticleLayout<dim>::stress_tensor(props),
+                     embed<dim>(ParticleLayout<dim>::deformation_gradient(props), 1.));
         sums[2] -= mass * (parameters.gravity * x);
         double *const body_sums = &sums[3 + dim + body * per_body];
         body_sums[0] += mass;

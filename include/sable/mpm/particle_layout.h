@@ -1,6 +1,9 @@
 #ifndef sable_mpm_particle_layout_h
 #define sable_mpm_particle_layout_h
 
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
 #include <string>
 #include <vector>
 
@@ -31,6 +34,50 @@ namespace sable::mpm
     n_properties() const
     {
       return history + n_history;
+    }
+
+    /// Index among the stress components (xx yy zz xy xz yz) of (i, j).
+    static constexpr unsigned int
+    stress_component(const unsigned int i, const unsigned int j)
+    {
+      return i == j ? i : (i + j == 1 ? 3u : (i + j == 2 ? 4u : 5u));
+    }
+
+    template <typename Properties>
+    static dealii::Tensor<2, dim>
+    deformation_gradient(const Properties &props)
+    {
+      dealii::Tensor<2, dim> F;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          F[i][j] = props[deformation + i * dim + j];
+      return F;
+    }
+
+    /// The full (3 x 3) Cauchy stress.
+    template <typename Properties>
+    static dealii::SymmetricTensor<2, 3>
+    stress_tensor(const Properties &props)
+    {
+      dealii::SymmetricTensor<2, 3> sigma;
+      for (unsigned int c = 0; c < 6; ++c)
+        sigma.access_raw_entry(c) = props[stress + c];
+      return sigma;
+    }
+
+    /// V sigma restricted to the dim x dim plane, V = det(F) V0: the
+    /// particle's share in the internal nodal forces -V sigma . grad N.
+    template <typename Properties>
+    static dealii::Tensor<2, dim>
+    volume_stress(const Properties &props)
+    {
+      const double volume =
+        dealii::determinant(deformation_gradient(props)) * props[initial_volume];
+      dealii::Tensor<2, dim> result;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          result[i][j] = volume * props[stress + stress_component(i, j)];
+      return result;
     }
 
     /// Output names; vector quantities repeat their name dim times.
