@@ -208,8 +208,10 @@ namespace sable::mpm
             momentum_correction += r.mass * scale * change[a].norm();
             // kinetic energy the tangential change removes in the
             // centre-of-mass frame: m tau (|dv_t| - tau/2)
+            // (only in the pass whose changes reach the particles)
             const double tau = scale * tangential_change[a];
-            frictional_heat += r.mass * tau * (tangential_speed[a] - 0.5 * tau);
+            if (record_forces)
+              frictional_heat += r.mass * tau * (tangential_speed[a] - 0.5 * tau);
             if (record_forces && n >= 2)
               for (unsigned int b = 0; b < n; ++b)
                 if (b != a)

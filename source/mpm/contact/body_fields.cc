@@ -38,18 +38,26 @@ namespace sable::mpm
         const unsigned int node = it->first;
         contact_nodes.push_back(node);
         first_record[node] = records.size();
-        // the node's bodies: the first one seen and the extra ones, sorted
-        std::vector<unsigned int> bodies = {first_body[node]};
+        // the node's bodies, sorted: the first one seen, merged into the
+        // (sorted) extra ones
+        bool first_placed = false;
         for (; it != extra_bodies.end() && it->first == node; ++it)
-          if (it->second != first_body[node])
-            bodies.push_back(it->second);
-        std::sort(bodies.begin(), bodies.end());
-        for (const unsigned int body : bodies)
           {
-            zero.body = body;
+            if (!first_placed && first_body[node] < it->second)
+              {
+                zero.body = first_body[node];
+                records.push_back(zero);
+                first_placed = true;
+              }
+            zero.body = it->second;
             records.push_back(zero);
           }
-        n_records[node] = bodies.size();
+        if (!first_placed)
+          {
+            zero.body = first_body[node];
+            records.push_back(zero);
+          }
+        n_records[node] = records.size() - first_record[node];
       }
   }
 

@@ -36,10 +36,11 @@ namespace sable::mpm
 
     /**
      * Apply contact at every contact node. @p spacing gives the cell size
-     * per direction at each node (for the impulse scaling). Frictional heat
-     * and (if @p record_forces) the pair forces are accumulated for nodes
-     * below @p n_owned_nodes only, so that sums over ranks count each node
-     * once.
+     * per direction at each node (for the impulse scaling). With
+     * @p record_forces (the pass after the momentum update, whose changes
+     * reach the particles) frictional heat, pair forces and the output
+     * fields of the records are accumulated, for nodes below
+     * @p n_owned_nodes only, so that sums over ranks count each node once.
      */
     void
     apply(BodyFields<dim> &                  fields,
