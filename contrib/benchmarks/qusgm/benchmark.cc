@@ -5,7 +5,7 @@
 //
 //   qusgm_benchmark scaling <cache dir> N1 [N2 ...]
 //   qusgm_benchmark accuracy <cache dir> N
-//   qusgm_benchmark validation <cache dir> N
+//   qusgm_benchmark validation <cache dir> N [sigma_c of stage (a) in Pa]
 //   qusgm_benchmark dem <cache dir> N
 //
 // validation: from the compacted pack, for mu = 0.3, 0.5 and 0, friction
@@ -77,12 +77,15 @@ namespace
   // A pack of n grains after the paper's stage (a), from the cache or made.
   Simulation
   prepared(const unsigned int n, const std::string &cache,
-           const bool activate = true)
+           const bool activate = true, const double target = 4e6)
   {
     namespace fs = std::filesystem;
     fs::create_directories(cache);
-    const std::string pack_file  = cache + "/pack_" + std::to_string(n) + ".csv";
-    const std::string walls_file = cache + "/walls_" + std::to_string(n) + ".txt";
+    const std::string suffix =
+      std::to_string(n) +
+      (target == 4e6 ? "" : "_" + std::to_string(int(target / 1e3)) + "kPa");
+    const std::string pack_file  = cache + "/pack_" + suffix + ".csv";
+    const std::string walls_file = cache + "/walls_" + suffix + ".txt";
     Pack  pack;
     Walls walls;
     if (fs::exists(pack_file) && fs::exists(walls_file))
@@ -103,7 +106,7 @@ namespace
         ContactModel smooth = friction_model();
         Simulation   sim(pack, walls, smooth, lbfgs(1e-5), quiet);
         PreparationSettings p;
-        p.target_confining_stress = 4e6;
+        p.target_confining_stress = target;
         p.friction_stage          = false;
         prepare_pack(sim, smooth, p);
         write_pack(sim.pack, pack_file);
@@ -304,12 +307,17 @@ main(int argc, char **argv)
     }
   if (mode == "validation")
     {
-      const unsigned int n = std::stoi(argv[3]);
-      for (const double mu : {0.3, 0.5, 0.})
+      const unsigned int n      = std::stoi(argv[3]);
+      const double       target = argc > 4 ? std::stod(argv[4]) : 4e6;
+      const std::vector<double> mus =
+        argc > 4 ? std::vector<double>{0.3} : std::vector<double>{0.3, 0.5, 0.};
+      for (const double mu : mus)
         {
-          Simulation sim = prepared(n, cache, false);
+          Simulation sim = prepared(n, cache, false, target);
           // The stage (a) pack carries no history: record from here.
-          sim.open_table(cache + "/validation_mu" + std::to_string(mu).substr(0, 3) + ".csv");
+          sim.open_table(cache + "/validation_mu" + std::to_string(mu).substr(0, 3) +
+                         (argc > 4 ? "_" + std::string(argv[4]) : "") + ".csv");
+          sim.settings.predictor = true;
           ContactModel model  = friction_model();
           model.friction      = mu;
           model.wall_friction = mu;
