@@ -2,7 +2,9 @@
 """One rank and two ranks give the same statistics.csv to 1e-10 relative
 (each column compared against the largest magnitude of its kind): a disk bouncing and
 rolling on a friction floor under tilted gravity, 2D and 3D, so particles
-cross the partition boundary, and a plastic box squeezed by a moving wall."""
+cross the partition boundary, a plastic box squeezed by a moving wall, and
+two disks colliding with frictional contact across the partition boundary
+(ghost particles complete the per-body fields)."""
 from scene_test import *
 
 
@@ -54,4 +56,9 @@ compare("plastic_box", {
 }, [{"Shape": "box", "Lower corner": "0, 0.3", "Upper corner": "1, 0.7", "Material": "von Mises",
      "Young's modulus": 1e6, "Poisson's ratio": 0.3, "Yield stress": 1e4, "Hardening modulus": 1e5,
      "Density": 1000, "Particles per cell direction": 2}])
+compare("contact_2d", {
+    "Dimension": 2, "Time/End time": 0.05, "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1",
+    "Grid/Subdivisions": "40, 20", "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": 0.3,
+}, [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0"),
+    dict(elastic, Shape="disk", Center="1.255, 0.56", Radius=0.2, Velocity="-5, 0")])
 finish()
