@@ -126,9 +126,24 @@ namespace sable::mpm
       });
 
     // seed every body; ids are unique over all ranks
+    // the locally owned cells sorted by their lower x, so that each body
+    // visits only the strip of cells its bounding box spans
+    std::vector<OwnedCell> owned_cells;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto corners = cell->bounding_box().get_boundary_points();
+          owned_cells.push_back({cell, corners.first, corners.second});
+        }
+    std::sort(owned_cells.begin(), owned_cells.end(), [](const auto &a, const auto &b) {
+      return a.lower[0] < b.lower[0];
+    });
+    double widest = 0;
+    for (const OwnedCell &c : owned_cells)
+      widest = std::max(widest, c.upper[0] - c.lower[0]);
     types::particle_index next_id = 0;
     for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
-      seed_body(b, next_id);
+      seed_body(b, owned_cells, widest, next_id);
     {
       types::particle_index offset = 0;
       const types::particle_index local = particle_handler->n_locally_owned_particles();
@@ -209,8 +224,10 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::seed_body(const unsigned int     b,
-                            types::particle_index &next_id)
+  Simulator<dim>::seed_body(const unsigned int            b,
+                            const std::vector<OwnedCell> &owned_cells,
+                            const double                  widest,
+                            types::particle_index &       next_id)
   {
     const BodyParameters<dim> &body     = parameters.bodies[b];
     const Material &           material = *materials[b];
@@ -227,13 +244,17 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       n_sub *= k;
 
-    for (const auto &cell : triangulation.active_cell_iterators())
+    const auto first = std::lower_bound(owned_cells.begin(),
+                                        owned_cells.end(),
+                                        box.first[0] - widest,
+                                        [](const OwnedCell &c, const double x) {
+                                          return c.lower[0] < x;
+                                        });
+    for (auto it = first; it != owned_cells.end() && it->lower[0] <= box.second[0]; ++it)
       {
-        if (!cell->is_locally_owned())
-          continue;
-        const BoundingBox<dim> cell_box = cell->bounding_box();
-        const Point<dim> lower = cell_box.get_boundary_points().first;
-        const Point<dim> upper = cell_box.get_boundary_points().second;
+        const auto &     cell  = it->cell;
+        const Point<dim> lower = it->lower;
+        const Point<dim> upper = it->upper;
         bool             overlaps = true;
         for (unsigned int d = 0; d < dim; ++d)
           overlaps = overlaps && upper[d] >= box.first[d] && lower[d] <= box.second[d];

@@ -116,8 +116,17 @@ namespace sable::mpm
   private:
     using NodalVector = LinearAlgebra::distributed::Vector<double>;
 
+    struct OwnedCell
+    {
+      typename Triangulation<dim>::active_cell_iterator cell;
+      Point<dim>                                        lower;
+      Point<dim>                                        upper;
+    };
     void
-    seed_body(const unsigned int body_index, types::particle_index &next_id);
+    seed_body(const unsigned int            body_index,
+              const std::vector<OwnedCell> &owned_cells,
+              const double                  widest_cell,
+              types::particle_index &       next_id);
     /// Find the contact nodes of this step (bodies per node).
     void
     find_contact_nodes();
