@@ -52,7 +52,7 @@ namespace sable::mpm
         f = 0;
 
     // per-body scratch of one node (nodes rarely hold more than a few bodies)
-    std::vector<Tensor<1, dim>> normal, change;
+    std::vector<Tensor<1, dim>> normal, change, own;
     std::vector<double>         tangential_speed, tangential_change;
 
     for (const unsigned int node : fields.get_contact_nodes())
@@ -99,7 +99,7 @@ namespace sable::mpm
           }
         else
           {
-            std::vector<Tensor<1, dim>> own(normal);
+            own = normal;
             for (unsigned int a = 0; a < n; ++a)
               {
                 // minus the mass-weighted mean of the others' directions
@@ -178,11 +178,11 @@ namespace sable::mpm
                 tangential_change[a] = tau;
               }
             // the cell-collapse rate of paper 002 section 2.2
-            const double weight = std::max(r.mass / std::max(total_mass - r.mass,
-                                                             std::numeric_limits<double>::min()),
-                                           1.);
+            const double mass_ratio = std::max(r.mass / std::max(total_mass - r.mass,
+                                                                 std::numeric_limits<double>::min()),
+                                               1.);
             for (unsigned int d = 0; d < dim; ++d)
-              rate = std::max(rate, weight * std::abs(change[a][d]) / spacing[node][d]);
+              rate = std::max(rate, mass_ratio * std::abs(change[a][d]) / spacing[node][d]);
           }
 
         double scale = 1;
