@@ -6,6 +6,8 @@
 //      total momentum to 1e-12 of sum_p m_p |v_p| at every step: at a node
 //      shared by two bodies both are corrected against the centre of mass
 //      with one common normal (SPEC step 4), so the corrections cancel;
+//    - the frictional heat reported lies between zero (frictionless: exactly
+//      zero) and the kinetic + strain energy the collision lost;
 //    - frictionless: kinetic + strain energy never exceeds its initial
 //      value by more than 1% (contact is an inelastic constraint; what is
 //      gained is transfer error), no material point of one disk comes
@@ -202,7 +204,14 @@ namespace
             if (simulator.get_step_number() % 5 == 0)
               closest = std::min(closest, closest_approach(simulator));
           }
-        const auto end = simulator.compute_statistics();
+        const auto   end  = simulator.compute_statistics();
+        const double lost = energy0 - (end.kinetic_energy + end.strain_energy);
+        // frictional work is part of what the collision dissipates
+        check(name + ": frictional heat " + std::to_string(end.contact_heat) +
+                " J within [0, energy lost " + std::to_string(lost) + " J]" +
+                (friction == 0 ? " and zero without friction" : ""),
+              end.contact_heat >= 0 && end.contact_heat <= lost &&
+                (friction != 0 || end.contact_heat == 0));
         check(name + ": momentum conserved every step (1e-12 of sum m|v|), worst " +
                 sci(worst_momentum),
               worst_momentum < 1e-12);

@@ -206,12 +206,14 @@ namespace sable::mpm
               continue;
             defect += r.mass * scale * change[a];
             momentum_correction += r.mass * scale * change[a].norm();
-            // kinetic energy the tangential change removes in the
-            // centre-of-mass frame: m tau (|dv_t| - tau/2)
-            // (only in the pass whose changes reach the particles)
+            // frictional work: the tangential impulse m tau times the slip
+            // speed left after it, |dv_t| - tau (zero while sticking); at
+            // a two-body node the sum over both bodies is the impulse times
+            // the relative slip speed (only in the pass whose changes reach
+            // the particles)
             const double tau = scale * tangential_change[a];
             if (record_forces)
-              frictional_heat += r.mass * tau * (tangential_speed[a] - 0.5 * tau);
+              frictional_heat += r.mass * tau * (tangential_speed[a] - tau);
             if (record_forces && n >= 2)
               for (unsigned int b = 0; b < n; ++b)
                 if (b != a)
