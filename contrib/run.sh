@@ -4,6 +4,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 scene="${1:-$root/prm/quick_demo.prm}"
+# the scene as an absolute path: the run starts in the project root
+[ -e "$scene" ] && scene="$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")"
 "$root/contrib/setup.sh"
 cd "$root"
 exec "$root/build/sable" "$scene"
