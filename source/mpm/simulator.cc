@@ -410,6 +410,7 @@ namespace sable::mpm
         if (particles.begin() == particles.end())
           continue;
         const typename Grid<dim>::CellData &data = grid.cell_data(cell);
+        const bool near_contact = use_contact && cell_touches_contact(data);
         for (const auto &particle : particles)
           {
             const auto props = particle.get_properties();
@@ -433,7 +434,7 @@ namespace sable::mpm
             // internal force -V sigma . grad N
             const Tensor<2, dim> volume_stress =
               with_forces ? ParticleLayout<dim>::volume_stress(props) : Tensor<2, dim>();
-            if (use_contact && cell_touches_contact(data))
+            if (near_contact)
               scatter_to_bodies(particle, data, shape, volume_stress);
             for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
               {
@@ -513,11 +514,15 @@ namespace sable::mpm
         if (with_forces && material_extent.size() > 0)
           boundary_conditions.set_material_extent(material_extent.get_values(), time_step);
         if (with_forces)
-      boundary_work += Utilities::MPI::sum(
-        boundary_conditions.apply(new_velocity,
-                                  nodal_mass,
-                                  nodal_data.get_partitioner()->locally_owned_size() / n_components),
-            communicator);
+          {
+            const double work = boundary_conditions.apply(
+              new_velocity,
+              nodal_mass,
+              nodal_data.get_partitioner()->locally_owned_size() / n_components);
+            // only moving walls do work: no reduction over ranks otherwise
+            if (boundary_conditions.has_moving_walls())
+              boundary_work += Utilities::MPI::sum(work, communicator);
+          }
         else
           boundary_conditions.apply_to_remapped(new_velocity, nodal_mass);
       }

@@ -75,6 +75,15 @@ namespace sable::mpm
     apply_to_bodies(BodyFields<dim> &fields, const bool remapped) const;
 
     bool
+    has_moving_walls() const
+    {
+      for (const auto &[id, wall] : parameters)
+        if (wall.type == BoundaryType::moving)
+          return true;
+      return false;
+    }
+
+    bool
     empty() const
     {
       return constraints.empty();
