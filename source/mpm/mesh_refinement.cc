@@ -11,10 +11,14 @@ namespace sable::mpm
   template <int dim>
   MeshRefinement<dim>::MeshRefinement(
     const MeshRefinementParameters<dim> &                      parameters,
-    const std::map<types::boundary_id, BoundaryParameters<dim>> &boundaries)
+    const std::map<types::boundary_id, BoundaryParameters<dim>> &boundaries,
+    const std::vector<BodyParameters<dim>> &                    bodies)
     : parameters(parameters)
     , boundaries(boundaries)
-  {}
+  {
+    for (const auto &body : bodies)
+      surface_bodies.push_back(body.refine_surface);
+  }
 
   template <int dim>
   void
@@ -127,7 +131,8 @@ namespace sable::mpm
       [&](const auto &cell) { return contents[cell->active_cell_index()].body; },
       [&](const auto &cell, const int body) { contents[cell->active_cell_index()].body = body; });
 
-    // what meets at each vertex
+    // what meets at each vertex: for the surface criterion, bodies that do
+    // not ask for surface refinement count as empty space
     struct VertexState
     {
       int  body     = no_body;
@@ -135,26 +140,36 @@ namespace sable::mpm
       bool empty    = false; // a cell without material
       bool occupied = false; // a cell with material
     };
-    std::vector<VertexState> vertices(triangulation.n_vertices());
-    for (const auto &cell : triangulation.active_cell_iterators())
-      {
-        if (cell->is_artificial())
-          continue;
-        const int body = contents[cell->active_cell_index()].body;
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            VertexState &s = vertices[cell->vertex_index(v)];
-            if (body == no_body)
-              s.empty = true;
-            else
-              {
-                s.occupied = true;
-                if (body == several_bodies || (s.body != no_body && s.body != body))
-                  s.several = true;
-                s.body = body;
-              }
-          }
-      }
+    const auto vertex_states = [&](const bool surface_view) {
+      std::vector<VertexState> vertices(triangulation.n_vertices());
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          if (cell->is_artificial())
+            continue;
+          int body = contents[cell->active_cell_index()].body;
+          if (surface_view && body >= 0 && !surface_bodies[body])
+            body = no_body;
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              VertexState &s = vertices[cell->vertex_index(v)];
+              if (body == no_body)
+                s.empty = true;
+              else
+                {
+                  s.occupied = true;
+                  if (body == several_bodies || (s.body != no_body && s.body != body))
+                    s.several = true;
+                  s.body = body;
+                }
+            }
+        }
+      return vertices;
+    };
+    const std::vector<VertexState> vertices = vertex_states(false);
+    const bool all_surfaces =
+      std::find(surface_bodies.begin(), surface_bodies.end(), false) == surface_bodies.end();
+    const std::vector<VertexState> surface_vertices =
+      parameters.uses(Criterion::body_surface) && !all_surfaces ? vertex_states(true) : vertices;
 
     const auto at_wall = [&](const auto &cell) {
       for (const unsigned int f : cell->face_indices())
@@ -183,9 +198,9 @@ namespace sable::mpm
         bool surface = false, meeting = false;
         for (const unsigned int v : cell->vertex_indices())
           {
-            const VertexState &s = vertices[cell->vertex_index(v)];
+            const VertexState &s = surface_vertices[cell->vertex_index(v)];
             surface = surface || s.several || (s.empty && s.occupied);
-            meeting = meeting || s.several;
+            meeting = meeting || vertices[cell->vertex_index(v)].several;
           }
         bool refine_here = false, keep_here = false;
         if (parameters.uses(Criterion::body_surface))

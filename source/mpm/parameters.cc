@@ -484,6 +484,13 @@ namespace sable::mpm
                                          dim == 2 ? 1 : 3),
                           "Initial rigid rotation about the centre, rad/s "
                           "(2D: one number, counter-clockwise).");
+        prm.declare_entry("Refine surface",
+                          "true",
+                          Patterns::Bool(),
+                          "Whether the 'body surface' refinement criterion "
+                          "refines around this body's surface (false, e.g., for "
+                          "a large plane a grain rolls on: only where the "
+                          "grain touches it, with the 'contact' criterion).");
         prm.declare_entry("Group",
                           "0",
                           Patterns::Integer(0),
@@ -794,6 +801,7 @@ namespace sable::mpm
             body.angular_velocity[d] = omega[d];
         body.lithostatic_stress = prm.get_bool("Lithostatic initial stress");
         body.group              = prm.get_integer("Group");
+        body.refine_surface     = prm.get_bool("Refine surface");
         const bool        is_box   = body.shape == BodyParameters<dim>::Shape::box;
         const std::string location_entry = is_box ? "Lower corner" : "Center";
         const std::string location = prm.get(location_entry);

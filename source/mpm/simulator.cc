@@ -118,7 +118,9 @@ namespace sable::mpm
     if (parameters.refinement.enabled())
       {
         mesh_refinement =
-          std::make_unique<MeshRefinement<dim>>(parameters.refinement, parameters.boundaries);
+          std::make_unique<MeshRefinement<dim>>(parameters.refinement,
+                                                parameters.boundaries,
+                                                parameters.bodies);
         mesh_refinement->refine_initial(triangulation, parameters.bodies);
       }
     grid.setup();

@@ -58,7 +58,8 @@ namespace sable::mpm
     };
 
     MeshRefinement(const MeshRefinementParameters<dim> &                      parameters,
-                   const std::map<types::boundary_id, BoundaryParameters<dim>> &boundaries);
+                   const std::map<types::boundary_id, BoundaryParameters<dim>> &boundaries,
+                   const std::vector<BodyParameters<dim>> &                    bodies);
 
     /// Refine globally to the minimum level, then where the criteria ask
     /// (judged by the bodies' seeding points) up to the maximum level.
@@ -83,6 +84,8 @@ namespace sable::mpm
 
     const MeshRefinementParameters<dim>                         parameters;
     const std::map<types::boundary_id, BoundaryParameters<dim>> boundaries;
+    /// per body: whether the body surface criterion looks at it
+    std::vector<bool> surface_bodies;
   };
 } // namespace sable::mpm
 

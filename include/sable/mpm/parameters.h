@@ -57,6 +57,9 @@ namespace sable::mpm
     bool lithostatic_stress = false;
     /// Contact group: friction coefficients are set per pair of groups.
     unsigned int group = 0;
+    /// Refine around this body's surface (Mesh refinement criterion
+    /// 'body surface').
+    bool refine_surface = true;
 
     /// Axis-aligned bounding box of the shape.
     std::pair<Point<dim>, Point<dim>>
