@@ -48,7 +48,7 @@ namespace sable::mpm
     for (unsigned int pass = parameters.minimum_level; pass < parameters.maximum_level; ++pass)
       {
         std::vector<CellContent> contents = seeding_contents(triangulation, bodies);
-        if (!flag_cells(triangulation, contents))
+        if (flag_cells(triangulation, contents).refine == 0)
           break;
         // nothing to coarsen yet: keep every cell the grid started with
         for (const auto &cell : triangulation.active_cell_iterators())
@@ -120,7 +120,7 @@ namespace sable::mpm
   }
 
   template <int dim>
-  bool
+  typename MeshRefinement<dim>::FlagCount
   MeshRefinement<dim>::flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                                   std::vector<CellContent> &                 contents) const
   {
@@ -229,7 +229,7 @@ namespace sable::mpm
 
     // refine below the maximum level; coarsen only whole families above the
     // minimum level, so that a flag always changes the grid
-    unsigned int n_flagged = 0;
+    unsigned long long n_refine = 0, n_coarsen = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -238,7 +238,7 @@ namespace sable::mpm
         if (decisions[cell->active_cell_index()] == refine && level < parameters.maximum_level)
           {
             cell->set_refine_flag();
-            ++n_flagged;
+            ++n_refine;
           }
         else if (decisions[cell->active_cell_index()] == coarsen &&
                  level > parameters.minimum_level)
@@ -255,11 +255,12 @@ namespace sable::mpm
             if (whole_family)
               {
                 cell->set_coarsen_flag();
-                ++n_flagged;
+                ++n_coarsen;
               }
           }
       }
-    return Utilities::MPI::sum(n_flagged, triangulation.get_communicator()) > 0;
+    const MPI_Comm communicator = triangulation.get_communicator();
+    return {Utilities::MPI::sum(n_refine, communicator), Utilities::MPI::sum(n_coarsen, communicator)};
   }
 
   template class MeshRefinement<2>;

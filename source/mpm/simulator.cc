@@ -253,8 +253,19 @@ namespace sable::mpm
         for (const auto &particle : particle_handler->particles_in_cell(cell))
           contents[cell->active_cell_index()].add(
             static_cast<unsigned int>(particle.get_properties()[layout.body]));
-    if (!mesh_refinement->flag_cells(triangulation, contents))
-      return;
+    // refine at once; coarsening only saves work, so it waits for a
+    // refinement or for every fourth adaptation (each one rebuilds the
+    // forest, the node numbering and the hanging-node tables)
+    const auto flagged     = mesh_refinement->flag_cells(triangulation, contents);
+    const bool coarsen_now = ++adaptations_without_change >= 4 && flagged.coarsen > 0;
+    if (flagged.refine == 0 && !coarsen_now)
+      {
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            cell->clear_coarsen_flag();
+        return;
+      }
+    adaptations_without_change = 0;
     const unsigned long long before = particle_handler->n_global_particles();
     particle_handler->prepare_for_coarsening_and_refinement();
     triangulation.execute_coarsening_and_refinement();

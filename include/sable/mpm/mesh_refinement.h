@@ -67,12 +67,19 @@ namespace sable::mpm
     refine_initial(parallel::distributed::Triangulation<dim> &triangulation,
                    const std::vector<BodyParameters<dim>> &   bodies) const;
 
+    /// Cells flagged on all ranks.
+    struct FlagCount
+    {
+      unsigned long long refine  = 0;
+      unsigned long long coarsen = 0;
+    };
+
     /**
      * Set refine and coarsen flags on the locally owned cells from their
      * contents (indexed by active cell index; only owned cells are read).
-     * Returns whether any rank flagged a cell.
+     * Returns the numbers of flagged cells over all ranks.
      */
-    bool
+    FlagCount
     flag_cells(parallel::distributed::Triangulation<dim> &triangulation,
                std::vector<CellContent> &                 contents) const;
 
