@@ -78,10 +78,9 @@ namespace sable::mpm
   Grid<dim>::fold_hanging_vertices(const std::vector<types::global_dof_index> &dofs,
                                    const AffineConstraints<double> &constraints) const
   {
-    HangingCell folded;
-    for (auto &row : folded.weights)
-      row.fill(0.);
-    const auto slot = [&](const types::global_dof_index dof) {
+    HangingCell  folded;
+    unsigned int n_entries = 0;
+    const auto   slot      = [&](const types::global_dof_index dof) {
       const unsigned int node = node_partitioner->global_to_local(dof);
       for (unsigned int k = 0; k < folded.n_nodes; ++k)
         if (folded.nodes[k] == node)
@@ -92,21 +91,30 @@ namespace sable::mpm
       folded.nodes[folded.n_nodes] = node;
       return folded.n_nodes++;
     };
+    const auto add = [&](const types::global_dof_index dof, const double weight) {
+      AssertThrow(n_entries < HangingCell::max_entries,
+                  ExcMessage("A hanging vertex depends on more nodes than expected."));
+      folded.slot[n_entries]   = slot(dof);
+      folded.weight[n_entries] = weight;
+      ++n_entries;
+    };
     const auto relevant = [&](const types::global_dof_index dof) {
       return node_partitioner->in_local_range(dof) || node_partitioner->is_ghost_entry(dof);
     };
     for (unsigned int v = 0; v < nodes_per_cell; ++v)
       {
+        folded.first[v]     = n_entries;
         const auto *entries = constraints.get_constraint_entries(dofs[v]);
         if (entries == nullptr)
-          folded.weights[v][slot(dofs[v])] += 1.;
+          add(dofs[v], 1.);
         else
           for (const auto &[master, weight] : *entries)
             // a ghost cell's master may lie beyond this rank's nodes; no
             // local particle reads it, so its share is not needed here
             if (relevant(master))
-              folded.weights[v][slot(master)] += weight;
+              add(master, weight);
       }
+    folded.first[nodes_per_cell] = n_entries;
     return folded;
   }
 

@@ -60,13 +60,18 @@ namespace sable::mpm
       unsigned int hanging = numbers::invalid_unsigned_int;
     };
 
-    /// The folding of a cell with hanging vertices.
+    /// The folding of a cell with hanging vertices, sparse: vertex v
+    /// contributes weight[e] of its shape function to node slot[e] for
+    /// e in [first[v], first[v + 1]).
     struct HangingCell
     {
-      unsigned int                                   n_nodes = 0;
-      std::array<unsigned int, max_nodes_per_cell>   nodes;
-      /// weights[v][k]: share of vertex v's shape function in node k
-      std::array<std::array<double, max_nodes_per_cell>, nodes_per_cell> weights;
+      static constexpr unsigned int max_entries = 8 * nodes_per_cell;
+
+      unsigned int                                 n_nodes = 0;
+      std::array<unsigned int, max_nodes_per_cell> nodes;
+      std::array<unsigned char, nodes_per_cell + 1> first;
+      std::array<unsigned char, max_entries>        slot;
+      std::array<double, max_entries>               weight;
     };
 
     /// Shape functions of one cell at one point, on unconstrained nodes.
@@ -122,16 +127,15 @@ namespace sable::mpm
       shape.nodes          = h.nodes.data();
       for (unsigned int k = 0; k < h.n_nodes; ++k)
         {
-          double         value = 0;
-          Tensor<1, dim> gradient;
-          for (unsigned int v = 0; v < nodes_per_cell; ++v)
-            {
-              value += h.weights[v][k] * shape.vertex.values[v];
-              gradient += h.weights[v][k] * shape.vertex.gradients[v];
-            }
-          shape.folded_values[k]    = value;
-          shape.folded_gradients[k] = gradient;
+          shape.folded_values[k]    = 0.;
+          shape.folded_gradients[k] = Tensor<1, dim>();
         }
+      for (unsigned int v = 0; v < nodes_per_cell; ++v)
+        for (unsigned int e = h.first[v]; e < h.first[v + 1]; ++e)
+          {
+            shape.folded_values[h.slot[e]] += h.weight[e] * shape.vertex.values[v];
+            shape.folded_gradients[h.slot[e]] += h.weight[e] * shape.vertex.gradients[v];
+          }
       shape.values    = shape.folded_values.data();
       shape.gradients = shape.folded_gradients.data();
     }
