@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """What adaptive grids buy: scenes A1 (theta = pi/6, mu = 0.5, a rolling
 disk) and A3 (backspin sphere) on a uniform coarse grid, a uniform fine grid
-(one level finer) and a coarse grid refined to the fine size around the
-grains and where they touch (Mesh refinement criteria 'body surface,
-contact'; A3's plane keeps its surface coarse, 'Refine surface = false', and
-is refined only where the sphere touches it). Errors against the rigid-body
+(one level finer), and the coarse grid refined to the fine size (a) around the
+grains' surfaces and where they touch (Mesh refinement criteria 'body
+surface, contact'; A3's plane keeps its surface coarse, 'Refine surface =
+false') and (b) only where they touch (criterion 'contact': A1's disk at the
+friction wall, A3's sphere and plane where they meet). Errors against the rigid-body
 solutions of contrib/validation/a1_incline.py and a2_a3.py, wall times of
 one run each on one MPI rank, all in one invocation so the times compare.
 
@@ -44,26 +45,26 @@ CASES = [
 ]
 
 
-def scene_text(text, subdivisions, directory, refinement, interval):
+def scene_text(text, subdivisions, directory, criteria, interval):
     text, n = re.subn(r"(?m)^(\s*set Subdivisions\s*=).*$",
                       r"\g<1> " + ", ".join(map(str, subdivisions)), text)
     assert n == 1
     text, n = re.subn(r"(?m)^(\s*set Output directory\s*=).*$", rf"\g<1> {directory}", text)
     assert n == 1
     text = re.sub(r"(?m)^(\s*set Particle output interval\s*=).*$", r"\g<1> 0", text)
-    if refinement:
-        text += ("\nsubsection Mesh refinement\n  set Criteria = body surface, contact\n"
+    if criteria:
+        text += (f"\nsubsection Mesh refinement\n  set Criteria = {criteria}\n"
                  f"  set Maximum level = 1\n  set Refinement interval = {interval}\nend\n")
         # a plane under a grain: refined only where the grain touches it
         text = re.sub(r"(?ms)^(subsection Body 1\n)", r"\g<1>  set Refine surface = false\n", text)
     return text
 
 
-def run(sable, work, scene, label, subdivisions, refinement, interval):
+def run(sable, work, scene, label, subdivisions, criteria, interval):
     os.makedirs(work, exist_ok=True)
     name = f"{scene}_{label}"
     with open(os.path.join(ROOT, "prm", scene + ".prm")) as f:
-        text = scene_text(f.read(), subdivisions, name, refinement, interval)
+        text = scene_text(f.read(), subdivisions, name, criteria, interval)
     with open(os.path.join(work, name + ".prm"), "w") as f:
         f.write(text)
     result = subprocess.run([sable, name + ".prm"], cwd=work, capture_output=True, text=True)
@@ -101,14 +102,16 @@ def main():
     for title, scene, coarse, rigid, (h_coarse, h_fine) in CASES:
         fine = tuple(2 * n for n in coarse)
         results = {}
-        for label, subdivisions, refine in (("coarse", coarse, False), ("fine", fine, False),
-                                            ("adaptive", coarse, True)):
-            rows, wall = run(args.sable, args.work, scene, label, subdivisions, refine, args.interval)
+        for label, subdivisions, criteria in (("coarse", coarse, ""), ("fine", fine, ""),
+                                              ("surface", coarse, "body surface, contact"),
+                                              ("contact", coarse, "contact")):
+            rows, wall = run(args.sable, args.work, scene, label, subdivisions, criteria, args.interval)
             results[label] = (errors(rows, rigid), wall)
             print(f"{title}, {label}: x err {results[label][0]['ex_rel']:+.2%}, {wall:.1f} s", flush=True)
         e_fine, t_fine = results["fine"]
         for label, grid in (("coarse", f"uniform {h_coarse}"), ("fine", f"uniform {h_fine}"),
-                            ("adaptive", f"{h_coarse}, {h_fine} at grains and contact")):
+                            ("surface", f"{h_coarse}, {h_fine} at surfaces and contacts"),
+                            ("contact", f"{h_coarse}, {h_fine} at contacts")):
             e, wall = results[label]
             lines.append(f"| {title} | {grid} | {e['cells_start']}-{e['cells_max']} | {e['points']} | "
                          f"{e['steps']} | {wall:.1f} | {e['ex_rel']:+.1%} | {e['ex_max']:.1%} | "

@@ -176,7 +176,7 @@ namespace sable::mpm
         if (cell->at_boundary(f))
           {
             const auto it = boundaries.find(cell->face(f)->boundary_id());
-            if (it != boundaries.end() && it->second.type != BoundaryType::free)
+            if (it != boundaries.end() && it->second.type == BoundaryType::friction)
               return true;
           }
       return false;

@@ -149,7 +149,7 @@ namespace sable::mpm
     enum class Criterion
     {
       body_surface,   ///< cells at a body's surface or between bodies
-      contact,        ///< cells where bodies meet each other or a wall
+      contact,        ///< cells where bodies meet each other or a friction wall
       particle_count, ///< cells holding more than a number of points
       region          ///< cells inside a box
     };
