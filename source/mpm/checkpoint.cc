@@ -221,7 +221,7 @@ namespace sable::mpm
 
 
   std::string
-  checkpoint_problem(const std::string &directory)
+  checkpoint_problem(const std::string &directory, const bool verify_checksums)
   {
     const fs::path path(directory);
     if (!fs::is_directory(path))
@@ -248,7 +248,7 @@ namespace sable::mpm
         if (fs::file_size(file) != size)
           return "has the file " + name + " of " + std::to_string(fs::file_size(file)) +
                  " bytes instead of " + std::to_string(size);
-        if (file_checksum(file) != crc)
+        if (verify_checksums && file_checksum(file) != crc)
           return "has the file " + name + " with a wrong checksum";
         has_state = has_state || name == state_file;
         has_mesh  = has_mesh || name == mesh_file;
@@ -299,6 +299,9 @@ namespace sable::mpm
   Simulator<dim>::save_checkpoint(const std::string &directory_name)
   {
     AssertThrow(initialized, ExcMessage("save_checkpoint() needs an initialized Simulator."));
+    AssertThrow(!directory_name.empty() || !parameters.output_directory.empty(),
+                ExcMessage("save_checkpoint() needs a directory when the output directory is "
+                           "empty."));
     TimerOutput::Scope scope(timer, "checkpoint");
     const fs::path directory =
       directory_name.empty() ? fs::path(parameters.output_directory) / checkpoint_name :
@@ -359,10 +362,16 @@ namespace sable::mpm
           throw std::runtime_error("cannot write '" + (tmp / state_file).string() + "'");
       }
       write_manifest(tmp);
-      // the set is complete: swap it in, keeping the previous one until then
-      fs::remove_all(old);
-      if (fs::exists(directory))
-        fs::rename(directory, old);
+      // the set is complete: swap it in, keeping the previous complete one
+      // until then (an incomplete 'directory', left by an earlier failure,
+      // must not replace a complete 'old'; sizes suffice to tell)
+      if (checkpoint_problem(directory.string(), false).empty())
+        {
+          fs::remove_all(old);
+          fs::rename(directory, old);
+        }
+      else
+        fs::remove_all(directory);
       fs::rename(tmp, directory);
       sync(directory.parent_path().empty() ? fs::path(".") : directory.parent_path());
       fs::remove_all(old);

@@ -10,7 +10,8 @@ and the particle output series must equal those of the uninterrupted run:
 rows written after the checkpoint by the stopped runs are not repeated, and
 the row of step 100, which only the stopped run writes (Statistics interval
 3), is gone. The last resume finds a partially written `checkpoint` and
-must fall back to `checkpoint.old`. --resume without a usable checkpoint
+must fall back to `checkpoint.old`; its own checkpoints then replace the
+incomplete one. --resume without a usable checkpoint
 fails with a message naming the output directory.
 
 Usage: checkpoint_restart.py [ranks] (default 1). With 2 ranks it also
@@ -114,11 +115,15 @@ shutil.copytree(saved, checkpoint)
 variable = os.path.join(checkpoint, "triangulation_variable.data")
 with open(variable, "r+b") as f:
     f.truncate(os.path.getsize(variable) // 2)
-_, output, rows = run(name, scene(N), bodies, ranks=ranks, args=["--resume"], fresh=False)
+_, output, rows = run(name, scene(N, 50), bodies, ranks=ranks, args=["--resume"], fresh=False)
 check("falls back to checkpoint.old and says so",
       "checkpoint.old" in output and "triangulation_variable.data" in output,
       next((l for l in output.splitlines() if "Note" in l), "(no note)"))
 compare("stopped at 100, resumed to 150, resumed from 100 to 200", rows, full, 1e-12)
+check("the next checkpoints replaced the incomplete one, no .tmp or .old left over",
+      os.path.isfile(os.path.join(checkpoint, "manifest")) and
+      not os.path.exists(checkpoint + ".tmp") and not os.path.exists(checkpoint + ".old"),
+      str(sorted(os.listdir(out))))
 check("same particle output series as the uninterrupted run",
       pvd_entries(directory) == pvd_entries(os.path.join(WORK, full_name)),
       f"{len(pvd_entries(directory))} vs {len(pvd_entries(os.path.join(WORK, full_name)))} entries")
@@ -135,7 +140,7 @@ if n_ranks == 2:
     compare("2-rank checkpoint resumed on 1 rank", rows, full_np1, 1e-10)
 
 # no complete checkpoint at all: a clear error naming the directory
-shutil.rmtree(checkpoint + ".old")
+shutil.rmtree(checkpoint + ".old", ignore_errors=True)
 with open(os.path.join(checkpoint, "manifest"), "w") as f:
     f.write("garbage\n")
 code, output, _ = run(name, scene(N), bodies, ranks=ranks, args=["--resume"], fresh=False, expect_success=False)

@@ -32,11 +32,12 @@ namespace sable::mpm
 
   /**
    * What is wrong with the checkpoint in @p directory (missing, no
-   * manifest, a file missing, of the wrong size or with the wrong
-   * checksum), or an empty string if it is complete. Reads every file.
+   * manifest, a file missing, of the wrong size or, with
+   * @p verify_checksums, with the wrong checksum), or an empty string if it
+   * is complete. Checksums mean reading every file.
    */
   std::string
-  checkpoint_problem(const std::string &directory);
+  checkpoint_problem(const std::string &directory, const bool verify_checksums = true);
 
   /**
    * The checkpoint to resume the run in @p output_directory from:
