@@ -955,20 +955,39 @@ namespace sable::mpm
     if (parameters.output_format == OutputFormat::hdf5)
       {
         // one file for all ranks (collective MPI-IO), no merging of
-        // material points that share a location
-        DataOutBase::DataOutFilter filter(
-          DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/false,
-                                          /*xdmf_hdf5_output=*/true));
-        data_out.write_filtered_data(filter);
+        // material points that share a location. deal.II 9.4's writer
+        // hangs if a rank has no patches (it skips collective dataset
+        // writes), so only the ranks that hold material points write, and
+        // the first of them hands the XDMF entry to everybody.
         const std::string name =
           "particles_" + Utilities::int_to_string(output_counter++, 5) + ".h5";
-        data_out.write_hdf5_parallel(filter,
-                                     parameters.output_directory + "/" + name,
-                                     communicator);
-        xdmf_entries.push_back(data_out.create_xdmf_entry(filter, name, time, communicator));
-        data_out.write_xdmf_file(xdmf_entries,
-                                 parameters.output_directory + "/particles.xdmf",
-                                 communicator);
+        const unsigned int rank       = Utilities::MPI::this_mpi_process(communicator);
+        const bool         has_points = particle_handler->n_locally_owned_particles() > 0;
+        const unsigned int first_writer =
+          Utilities::MPI::min(has_points ? rank : numbers::invalid_unsigned_int, communicator);
+        if (first_writer != numbers::invalid_unsigned_int)
+          {
+            MPI_Comm writers;
+            MPI_Comm_split(communicator, has_points ? 0 : MPI_UNDEFINED, rank, &writers);
+            XDMFEntry entry;
+            if (has_points)
+              {
+                DataOutBase::DataOutFilter filter(
+                  DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/false,
+                                                  /*xdmf_hdf5_output=*/true));
+                data_out.write_filtered_data(filter);
+                data_out.write_hdf5_parallel(filter,
+                                             parameters.output_directory + "/" + name,
+                                             writers);
+                entry = data_out.create_xdmf_entry(filter, name, time, writers);
+                MPI_Comm_free(&writers);
+              }
+            xdmf_entries.push_back(Utilities::MPI::broadcast(communicator, entry, first_writer));
+            if (rank == 0)
+              data_out.write_xdmf_file(xdmf_entries,
+                                       parameters.output_directory + "/particles.xdmf",
+                                       MPI_COMM_SELF);
+          }
       }
     else
       {

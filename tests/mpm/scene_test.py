@@ -40,7 +40,7 @@ def prm_text(entries, bodies):
     return "\n".join(lines) + "\n"
 
 
-def run(name, entries, bodies, ranks=0, expect_success=True, args=(), fresh=True):
+def run(name, entries, bodies, ranks=0, expect_success=True, args=(), fresh=True, timeout=None):
     """Run a scene in WORK/name (emptied first unless not `fresh`), with
     extra program arguments `args`; return (returncode, stdout+stderr, rows)."""
     directory = os.path.join(WORK, name)
@@ -54,7 +54,7 @@ def run(name, entries, bodies, ranks=0, expect_success=True, args=(), fresh=True
     command = [SABLE, "scene.prm"] + list(args)
     if ranks:
         command = [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + command
-    result = subprocess.run(command, cwd=directory, capture_output=True, text=True)
+    result = subprocess.run(command, cwd=directory, capture_output=True, text=True, timeout=timeout)
     output = result.stdout + result.stderr
     if expect_success and result.returncode != 0:
         print(output)
