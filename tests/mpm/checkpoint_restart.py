@@ -12,7 +12,8 @@ the row of step 100, which only the stopped run writes (Statistics interval
 3), is gone. The last resume finds a partially written `checkpoint` and
 must fall back to `checkpoint.old`; its own checkpoints then replace the
 incomplete one. --resume without a usable checkpoint
-fails with a message naming the output directory.
+fails with a message naming the output directory, and so does a parameter
+file with another number of bodies.
 
 Usage: checkpoint_restart.py [ranks] (default 1). With 2 ranks it also
 resumes the 2-rank checkpoint on 1 rank (the mesh is repartitioned) and
@@ -138,6 +139,15 @@ if n_ranks == 2:
     _, _, rows = run(one, scene(N), bodies, ranks=0, args=["--resume"], fresh=False)
     _, _, full_np1 = run("full_np1_reference", scene(N), bodies, ranks=0)
     compare("2-rank checkpoint resumed on 1 rank", rows, full_np1, 1e-10)
+
+# a parameter file that does not describe the saved scene
+with open(os.path.join(out, "statistics.csv")) as f:
+    before = f.read()
+code, output, _ = run(name, scene(N), bodies[:1], ranks=ranks, args=["--resume"], fresh=False, expect_success=False)
+check("another number of bodies: non-zero exit, message names the entry",
+      code != 0 and "Number of bodies" in output, message(output))
+with open(os.path.join(out, "statistics.csv")) as f:
+    check("... statistics.csv untouched", f.read() == before)
 
 # no complete checkpoint at all: a clear error naming the directory
 shutil.rmtree(checkpoint + ".old", ignore_errors=True)
