@@ -17,8 +17,12 @@ its .h5 file. A small box on one of 3 ranks checks that ranks without
 material points do not stall the collective write."""
 import os
 import re
+import shutil
 import subprocess
 from scene_test import *
+
+if not shutil.which("h5dump"):
+    raise SystemExit("[FAIL] h5dump not found: install the Debian package hdf5-tools (contrib/setup.sh does)")
 
 
 def read_dataset(h5, name):
