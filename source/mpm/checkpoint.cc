@@ -145,6 +145,7 @@ namespace sable::mpm
       double                largest_gravity_release = 0;
       double                next_output_time        = 0;
       unsigned int          output_counter          = 0;
+      unsigned int          adaptations_without_change = 0;
       bool                  with_contact            = false;
       double                frictional_heat         = 0;
       double                momentum_defect         = 0;
@@ -161,7 +162,7 @@ namespace sable::mpm
         ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &grid_box;
         ar &n_particles &step_number &time &time_step &max_signal_speed &boundary_work;
         ar &initial_energy &initial_gravity_energy &energy_floor &largest_gravity_release;
-        ar &next_output_time &output_counter;
+        ar &next_output_time &output_counter &adaptations_without_change;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction &pair_forces;
         ar &particle_files &contact_node_files &xdmf_entries;
       }
@@ -334,6 +335,7 @@ namespace sable::mpm
     state.largest_gravity_release = largest_gravity_release;
     state.next_output_time        = next_output_time;
     state.output_counter          = output_counter;
+    state.adaptations_without_change = adaptations_without_change;
     state.particle_files          = particle_files;
     state.contact_node_files      = contact_node_files;
     state.xdmf_entries            = xdmf_entries;
@@ -404,6 +406,7 @@ namespace sable::mpm
     }
 
     setup_models();
+    create_particle_handler();
     const auto mismatch = [&](const std::string &what,
                               const std::string &saved,
                               const std::string &now) {
@@ -455,7 +458,7 @@ namespace sable::mpm
             "cannot resume from '" + directory + "': it should hold " +
               std::to_string(state.n_particles) + " material points, " +
               std::to_string(particle_handler->n_global_particles()) + " were read");
-    setup_grid_fields();
+    allocate_nodal_data();
 
     const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
     step_number             = state.step_number;
@@ -469,6 +472,7 @@ namespace sable::mpm
     largest_gravity_release = state.largest_gravity_release;
     next_output_time        = state.next_output_time;
     output_counter          = state.output_counter;
+    adaptations_without_change = state.adaptations_without_change;
     particle_files          = state.particle_files;
     contact_node_files      = state.contact_node_files;
     xdmf_entries            = state.xdmf_entries;

@@ -1,4 +1,5 @@
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/affine_constraints.h>
 
 #include <sable/mpm/grid.h>
 
@@ -25,7 +26,15 @@ namespace sable::mpm
       relevant,
       triangulation.get_communicator());
 
+    // hanging nodes: each constrained vertex is a weighted sum of
+    // unconstrained nodes (close() resolves chains of constraints)
+    AffineConstraints<double> constraints;
+    constraints.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    constraints.close();
+
     cells.assign(triangulation.n_active_cells(), CellData());
+    hanging_cells.clear();
     double h_min = std::numeric_limits<double>::max();
     Tensor<1, dim> huge;
     for (unsigned int d = 0; d < dim; ++d)
@@ -38,22 +47,67 @@ namespace sable::mpm
         {
           CellData &data = cells[cell->active_cell_index()];
           cell->get_dof_indices(dofs);
+          bool hanging = false;
           for (unsigned int v = 0; v < nodes_per_cell; ++v)
             {
               data.nodes[v]             = node_partitioner->global_to_local(dofs[v]);
               positions[data.nodes[v]] = cell->vertex(v);
+              hanging = hanging || constraints.is_constrained(dofs[v]);
             }
+          if (hanging)
+            {
+              data.hanging = hanging_cells.size();
+              hanging_cells.push_back(fold_hanging_vertices(dofs, constraints));
+            }
+          const auto [nodes, n_nodes] = cell_nodes(data);
           for (unsigned int d = 0; d < dim; ++d)
             {
               const double h = cell->extent_in_direction(d);
               data.inverse_h[d] = 1. / h;
               if (cell->is_locally_owned())
                 h_min = std::min(h_min, h);
-              for (unsigned int v = 0; v < nodes_per_cell; ++v)
-                spacing[data.nodes[v]][d] = std::min(spacing[data.nodes[v]][d], h);
+              for (unsigned int k = 0; k < n_nodes; ++k)
+                spacing[nodes[k]][d] = std::min(spacing[nodes[k]][d], h);
             }
         }
     min_cell_size = Utilities::MPI::min(h_min, triangulation.get_communicator());
+  }
+
+  template <int dim>
+  typename Grid<dim>::HangingCell
+  Grid<dim>::fold_hanging_vertices(const std::vector<types::global_dof_index> &dofs,
+                                   const AffineConstraints<double> &constraints) const
+  {
+    HangingCell folded;
+    for (auto &row : folded.weights)
+      row.fill(0.);
+    const auto slot = [&](const types::global_dof_index dof) {
+      const unsigned int node = node_partitioner->global_to_local(dof);
+      for (unsigned int k = 0; k < folded.n_nodes; ++k)
+        if (folded.nodes[k] == node)
+          return k;
+      AssertThrow(folded.n_nodes < max_nodes_per_cell,
+                  ExcMessage("A cell's hanging vertices reach more nodes than a "
+                             "2:1 balanced mesh allows."));
+      folded.nodes[folded.n_nodes] = node;
+      return folded.n_nodes++;
+    };
+    const auto relevant = [&](const types::global_dof_index dof) {
+      return node_partitioner->in_local_range(dof) || node_partitioner->is_ghost_entry(dof);
+    };
+    for (unsigned int v = 0; v < nodes_per_cell; ++v)
+      {
+        const auto *entries = constraints.get_constraint_entries(dofs[v]);
+        if (entries == nullptr)
+          folded.weights[v][slot(dofs[v])] += 1.;
+        else
+          for (const auto &[master, weight] : *entries)
+            // a ghost cell's master may lie beyond this rank's nodes; no
+            // local particle reads it, so its share is not needed here
+            if (relevant(master))
+              folded.weights[v][slot(master)] += weight;
+      }
+    return folded;
   }
 
   template <int dim>

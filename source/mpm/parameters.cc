@@ -383,6 +383,48 @@ namespace sable::mpm
                       "when there are at most 4 bodies) or 'none'.");
     prm.leave_subsection();
 
+    prm.enter_subsection("Mesh refinement");
+    prm.declare_entry("Criteria",
+                      "",
+                      Patterns::MultipleSelection("body surface|contact|particle count|region"),
+                      "Where the grid is refined between steps (empty: a fixed "
+                      "grid). 'body surface': cells on either side of a body's "
+                      "surface and between bodies; 'contact': cells where "
+                      "bodies meet each other or a wall with a boundary "
+                      "condition; 'particle count': cells holding more than "
+                      "'Maximum particles per cell' material points; 'region': "
+                      "cells inside the box 'Region lower/upper corner'. "
+                      "Cells no criterion asks for are coarsened again, down "
+                      "to the minimum level.");
+    prm.declare_entry("Maximum level",
+                      "1",
+                      Patterns::Integer(0, 12),
+                      "Finest refinement level, counted from the starting grid "
+                      "(Grid/Subdivisions), in 0..12. Body geometry criteria "
+                      "refine to it before the bodies are seeded.");
+    prm.declare_entry("Minimum level",
+                      "0",
+                      Patterns::Integer(0, 12),
+                      "Coarsest level anywhere: the starting grid is refined "
+                      "globally to it; at most the maximum level.");
+    prm.declare_entry("Refinement interval",
+                      "10",
+                      Patterns::Integer(1),
+                      "Steps between mesh adaptations (>= 1). A body moves "
+                      "with the refined band only if it crosses less than about "
+                      "one fine cell in this many steps.");
+    prm.declare_entry("Maximum particles per cell",
+                      "16",
+                      Patterns::Integer(1),
+                      "'particle count' criterion: cells with more points are "
+                      "refined; cells are coarsened when their parent would "
+                      "hold at most this many.");
+    prm.declare_entry("Region lower corner", zero, Patterns::List(Patterns::Double(), dim, dim),
+                      "'region' criterion: lower corner of the refined box, m.");
+    prm.declare_entry("Region upper corner", zero, Patterns::List(Patterns::Double(), dim, dim),
+                      "'region' criterion: upper corner of the refined box, m.");
+    prm.leave_subsection();
+
     prm.enter_subsection("Output");
     prm.declare_entry("Particle output interval",
                       "0",
@@ -459,6 +501,13 @@ namespace sable::mpm
                                          dim == 2 ? 1 : 3),
                           "Initial rigid rotation about the centre, rad/s "
                           "(2D: one number, counter-clockwise).");
+        prm.declare_entry("Refine surface",
+                          "true",
+                          Patterns::Bool(),
+                          "Whether the 'body surface' refinement criterion "
+                          "refines around this body's surface (false, e.g., for "
+                          "a large plane a grain rolls on: only where the "
+                          "grain touches it, with the 'contact' criterion).");
         prm.declare_entry("Group",
                           "0",
                           Patterns::Integer(0),
@@ -538,6 +587,34 @@ namespace sable::mpm
       }
     for (unsigned int b = 0; b < p.bodies.size(); ++b)
       check_body(p.bodies[b], "Body " + std::to_string(b));
+
+    const MeshRefinementParameters<dim> &r = p.refinement;
+    check_input(r.minimum_level <= r.maximum_level,
+                "Mesh refinement/Minimum level",
+                r.minimum_level,
+                "a level <= 'Maximum level' = " + std::to_string(r.maximum_level));
+    check_input(r.interval >= 1, "Mesh refinement/Refinement interval", r.interval, "an integer >= 1");
+    if (r.enabled())
+      check_input(r.maximum_level > r.minimum_level,
+                  "Mesh refinement/Maximum level",
+                  r.maximum_level,
+                  "a level above 'Minimum level' = " + std::to_string(r.minimum_level) +
+                    " when refinement criteria are set");
+    if (r.uses(MeshRefinementParameters<dim>::Criterion::particle_count))
+      check_input(r.maximum_particles_per_cell >= 1,
+                  "Mesh refinement/Maximum particles per cell",
+                  r.maximum_particles_per_cell,
+                  "an integer >= 1");
+    if (r.uses(MeshRefinementParameters<dim>::Criterion::region))
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          std::ostringstream value;
+          value << r.region_upper_corner;
+          check_input(r.region_upper_corner[d] > r.region_lower_corner[d],
+                      "Mesh refinement/Region upper corner",
+                      value.str(),
+                      "each component larger than the Region lower corner's");
+        }
   }
 
   template <int dim>
@@ -691,6 +768,26 @@ namespace sable::mpm
     }
     prm.leave_subsection();
 
+    prm.enter_subsection("Mesh refinement");
+    {
+      using Criterion = typename MeshRefinementParameters<dim>::Criterion;
+      MeshRefinementParameters<dim> &r = p.refinement;
+      for (const std::string &name : Utilities::split_string_list(prm.get("Criteria")))
+        r.criteria.push_back(name == "body surface" ? Criterion::body_surface :
+                             name == "contact"      ? Criterion::contact :
+                             name == "particle count" ? Criterion::particle_count :
+                                                        Criterion::region);
+      r.maximum_level = prm.get_integer("Maximum level");
+      r.minimum_level = prm.get_integer("Minimum level");
+      r.interval      = prm.get_integer("Refinement interval");
+      r.maximum_particles_per_cell = prm.get_integer("Maximum particles per cell");
+      r.region_lower_corner =
+        Point<dim>(read_vector<dim>(prm, "Region lower corner", "Mesh refinement/"));
+      r.region_upper_corner =
+        Point<dim>(read_vector<dim>(prm, "Region upper corner", "Mesh refinement/"));
+    }
+    prm.leave_subsection();
+
     prm.enter_subsection("Output");
     p.output_interval     = prm.get_double("Particle output interval");
     p.output_format       = prm.get("Output format") == "hdf5" ? OutputFormat::hdf5 : OutputFormat::vtu;
@@ -728,6 +825,7 @@ namespace sable::mpm
             body.angular_velocity[d] = omega[d];
         body.lithostatic_stress = prm.get_bool("Lithostatic initial stress");
         body.group              = prm.get_integer("Group");
+        body.refine_surface     = prm.get_bool("Refine surface");
         const bool        is_box   = body.shape == BodyParameters<dim>::Shape::box;
         const std::string location_entry = is_box ? "Lower corner" : "Center";
         const std::string location = prm.get(location_entry);

@@ -113,6 +113,16 @@ namespace sable::mpm
         contact = std::make_unique<BardenhagenContact<dim>>(parameters.contact, groups);
       }
 
+    if (parameters.refinement.enabled())
+      mesh_refinement = std::make_unique<MeshRefinement<dim>>(parameters.refinement,
+                                                              parameters.boundaries,
+                                                              parameters.bodies);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::create_particle_handler()
+  {
     particle_handler = std::make_unique<Particles::ParticleHandler<dim>>(
       triangulation, grid.get_mapping(), layout.n_properties());
     particle_handler->signals.particle_lost.connect(
@@ -120,19 +130,6 @@ namespace sable::mpm
         ++lost_particles;
         lost_location = particle->get_location();
       });
-  }
-
-  template <int dim>
-  void
-  Simulator<dim>::setup_grid_fields()
-  {
-    const unsigned int n_components = 1 + 2 * dim;
-    nodal_data.reinit(grid.make_partitioner(n_components));
-    if (boundary_conditions.needs_material_extent())
-      material_extent.reinit(grid.make_partitioner(2 * dim));
-    nodal_mass.assign(grid.n_relevant_nodes(), 0.);
-    old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
-    new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
   }
 
   template <int dim>
@@ -171,8 +168,11 @@ namespace sable::mpm
       return;
     TimerOutput::Scope scope(timer, "initialize");
     setup_models();
+    if (mesh_refinement)
+      mesh_refinement->refine_initial(triangulation, parameters.bodies);
     grid.setup();
     boundary_conditions.setup(grid);
+    create_particle_handler();
 
     // seed every body; ids are unique over all ranks
     // the locally owned cells sorted by their lower x, so that each body
@@ -218,7 +218,7 @@ namespace sable::mpm
                     "on this grid");
     }
 
-    setup_grid_fields();
+    allocate_nodal_data();
 
     // the signal speed for the first time step, and an energy scale
     double max_speed = 0, mass_wave_speed2 = 0;
@@ -243,7 +243,12 @@ namespace sable::mpm
     statistics_file->write_row(0, 0., 0., 0., statistics);
 
     pcout << "sable MPM " << dim << "D: " << triangulation.n_global_active_cells()
-          << " cells, " << particle_handler->n_global_particles()
+          << " cells";
+    if (mesh_refinement)
+      pcout << " (levels " << parameters.refinement.minimum_level << "-"
+            << triangulation.n_global_levels() - 1 << ", adapted every "
+            << parameters.refinement.interval << " steps)";
+    pcout << ", " << particle_handler->n_global_particles()
           << " material points in " << parameters.bodies.size() << " bod"
           << (parameters.bodies.size() == 1 ? "y" : "ies") << ", "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s)"
@@ -251,6 +256,57 @@ namespace sable::mpm
     initialized = true;
     if (!parameters.output_directory.empty() && parameters.output_interval > 0)
       write_particles();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::allocate_nodal_data()
+  {
+    const unsigned int n_components = 1 + 2 * dim;
+    nodal_data.reinit(grid.make_partitioner(n_components));
+    if (boundary_conditions.needs_material_extent())
+      material_extent.reinit(grid.make_partitioner(2 * dim));
+    nodal_mass.assign(grid.n_relevant_nodes(), 0.);
+    old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
+    new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::adapt_mesh()
+  {
+    std::vector<typename MeshRefinement<dim>::CellContent> contents(
+      triangulation.n_active_cells());
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &particle : particle_handler->particles_in_cell(cell))
+          contents[cell->active_cell_index()].add(
+            static_cast<unsigned int>(particle.get_properties()[layout.body]));
+    // refine at once; coarsening only saves work, so it waits for a
+    // refinement or for every fourth adaptation (each one rebuilds the
+    // forest, the node numbering and the hanging-node tables)
+    const auto flagged     = mesh_refinement->flag_cells(triangulation, contents);
+    const bool coarsen_now = ++adaptations_without_change >= 4 && flagged.coarsen > 0;
+    if (flagged.refine == 0 && !coarsen_now)
+      {
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            cell->clear_coarsen_flag();
+        return;
+      }
+    adaptations_without_change = 0;
+    const unsigned long long before = particle_handler->n_global_particles();
+    particle_handler->prepare_for_coarsening_and_refinement();
+    triangulation.execute_coarsening_and_refinement();
+    particle_handler->unpack_after_coarsening_and_refinement();
+    particle_handler->update_cached_numbers();
+    AssertThrow(particle_handler->n_global_particles() == before,
+                ExcMessage("Material points were lost in a mesh adaptation."));
+    grid.setup();
+    boundary_conditions.setup(grid);
+    allocate_nodal_data();
+    if (use_contact && parallel)
+      particle_handler->exchange_ghost_particles(true);
   }
 
   template <int dim>
@@ -360,10 +416,10 @@ namespace sable::mpm
             if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
               bodies.push_back(body);
           }
-        const typename Grid<dim>::CellData &data = grid.cell_data(cell);
-        for (const unsigned int node : data.nodes)
+        const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(cell));
+        for (unsigned int k = 0; k < n_nodes; ++k)
           for (const unsigned int body : bodies)
-            body_fields.add(node, body);
+            body_fields.add(nodes[k], body);
       }
     body_fields.allocate();
   }
@@ -385,18 +441,17 @@ namespace sable::mpm
 
     // the share of one particle in the per-body fields of the contact
     // nodes of its cell (owned and, under MPI, ghost particles)
-    const auto scatter_to_bodies = [&](const auto &                        particle,
-                                       const typename Grid<dim>::CellData &data,
-                                       const Q1Shape<dim> &                shape,
-                                       const Tensor<2, dim> &              volume_stress) {
+    const auto scatter_to_bodies = [&](const auto &                   particle,
+                                       const typename Grid<dim>::Shape &shape,
+                                       const Tensor<2, dim> &         volume_stress) {
       const auto         props = particle.get_properties();
       const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
       const double       mass  = props[layout.mass];
-      for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+      for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {
-          if (!body_fields.is_contact_node(data.nodes[v]))
+          if (!body_fields.is_contact_node(shape.nodes[v]))
             continue;
-          auto &       record = body_fields.record(data.nodes[v], body);
+          auto &       record = body_fields.record(shape.nodes[v], body);
           const double weight = mass * shape.values[v];
           record.mass += weight;
           for (unsigned int d = 0; d < dim; ++d)
@@ -413,8 +468,9 @@ namespace sable::mpm
         }
     };
     const auto cell_touches_contact = [&](const typename Grid<dim>::CellData &data) {
-      for (const unsigned int node : data.nodes)
-        if (body_fields.is_contact_node(node))
+      const auto [nodes, n_nodes] = grid.cell_nodes(data);
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        if (body_fields.is_contact_node(nodes[k]))
           return true;
       return false;
     };
@@ -432,7 +488,7 @@ namespace sable::mpm
                   material_extent.get_partitioner()->n_ghost_indices(),
                 std::numeric_limits<double>::max());
 
-    Q1Shape<dim> shape;
+    typename Grid<dim>::Shape shape;
     for (const auto &cell : triangulation.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -445,7 +501,7 @@ namespace sable::mpm
         for (const auto &particle : particles)
           {
             const auto props = particle.get_properties();
-            shape.evaluate(particle.get_reference_location(), data.inverse_h);
+            grid.evaluate(data, particle.get_reference_location(), shape);
             const double mass = props[layout.mass];
             if (with_extent)
               {
@@ -454,10 +510,10 @@ namespace sable::mpm
                 const double half =
                   0.5 * std::pow(determinant(F) * props[layout.initial_volume], 1. / dim);
                 const Point<dim> x = particle.get_location();
-                for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+                for (unsigned int v = 0; v < shape.n_nodes; ++v)
                   for (unsigned int d = 0; d < dim; ++d)
                     {
-                      double *const e = extent + data.nodes[v] * 2 * dim + 2 * d;
+                      double *const e = extent + shape.nodes[v] * 2 * dim + 2 * d;
                       e[0]            = std::min(e[0], x[d] - half);
                       e[1]            = std::min(e[1], -(x[d] + half));
                     }
@@ -466,10 +522,10 @@ namespace sable::mpm
             const Tensor<2, dim> volume_stress =
               with_forces ? ParticleLayout<dim>::volume_stress(props) : Tensor<2, dim>();
             if (near_contact)
-              scatter_to_bodies(particle, data, shape, volume_stress);
-            for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+              scatter_to_bodies(particle, shape, volume_stress);
+            for (unsigned int v = 0; v < shape.n_nodes; ++v)
               {
-                double *const node = grid_values + data.nodes[v] * n_components;
+                double *const node = grid_values + shape.nodes[v] * n_components;
                 const double  weight = mass * shape.values[v];
                 node[0] += weight;
                 for (unsigned int d = 0; d < dim; ++d)
@@ -496,9 +552,8 @@ namespace sable::mpm
           for (const auto &particle : particle_handler->particles_in_cell(cell))
             {
               const auto props = particle.get_properties();
-              shape.evaluate(particle.get_reference_location(), data.inverse_h);
+              grid.evaluate(data, particle.get_reference_location(), shape);
               scatter_to_bodies(particle,
-                                data,
                                 shape,
                                 with_forces ? ParticleLayout<dim>::volume_stress(props) :
                                               Tensor<2, dim>());
@@ -600,7 +655,7 @@ namespace sable::mpm
     double       max_speed = 0;
     bool         failed = false, too_far = false;
     Point<dim>   failure_location;
-    Q1Shape<dim> shape;
+    typename Grid<dim>::Shape shape;
     for (const auto &cell : triangulation.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -613,12 +668,12 @@ namespace sable::mpm
           {
             const auto props = particle.get_properties();
             const unsigned int body = static_cast<unsigned int>(props[layout.body]);
-            shape.evaluate(particle.get_reference_location(), data.inverse_h);
+            grid.evaluate(data, particle.get_reference_location(), shape);
             Tensor<1, dim> velocity_change, grid_velocity;
             Tensor<2, dim> L;
-            for (unsigned int v = 0; v < Q1Shape<dim>::n_nodes; ++v)
+            for (unsigned int v = 0; v < shape.n_nodes; ++v)
               {
-                const unsigned int node  = data.nodes[v];
+                const unsigned int node  = shape.nodes[v];
                 const double *     v_new = &new_velocity[node * dim];
                 const double *     v_old = &old_velocity[node * dim];
                 // each particle reads its own body's field
@@ -791,6 +846,11 @@ namespace sable::mpm
     }
     time += time_step;
     ++step_number;
+    if (mesh_refinement && step_number % parameters.refinement.interval == 0)
+      {
+        TimerOutput::Scope scope(timer, "mesh adaptation");
+        adapt_mesh();
+      }
   }
 
   template <int dim>
@@ -879,6 +939,7 @@ namespace sable::mpm
         s.body_angular_velocity.push_back(omega);
       }
     s.n_particles = particle_handler->n_global_particles();
+    s.n_cells     = triangulation.n_global_active_cells();
     if (use_contact)
       {
         s.contact_heat = Utilities::MPI::sum(contact->frictional_heat, communicator);

@@ -29,6 +29,13 @@ cases = [
     ("friction_negative", {"Boundary conditions/Types": "2: friction",
                            "Boundary conditions/Friction coefficients": "2: -0.1"}, {}, ["Friction coefficients", "-0.1", ">= 0"]),
     ("yield_missing", {}, {"Material": "von Mises"}, ["Yield stress", "0", "> 0"]),
+    ("refinement_levels", {"Mesh refinement/Criteria": "body surface", "Mesh refinement/Minimum level": 3,
+                           "Mesh refinement/Maximum level": 2}, {}, ["Minimum level", "3", "<= 'Maximum level' = 2"]),
+    ("refinement_nothing", {"Mesh refinement/Criteria": "contact", "Mesh refinement/Maximum level": 0}, {},
+     ["Maximum level", "0", "above 'Minimum level'"]),
+    ("refinement_criterion", {"Mesh refinement/Criteria": "curvature"}, {}, ["Criteria", "curvature"]),
+    ("refinement_region", {"Mesh refinement/Criteria": "region", "Mesh refinement/Region lower corner": "0.5, 0.5",
+                           "Mesh refinement/Region upper corner": "0.6, 0.4"}, {}, ["Region upper corner", "larger"]),
 ]
 
 for name, entries, body_changes, words in cases:

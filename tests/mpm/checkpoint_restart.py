@@ -13,7 +13,8 @@ the row of step 100, which only the stopped run writes (Statistics interval
 must fall back to `checkpoint.old`; its own checkpoints then replace the
 incomplete one. --resume without a usable checkpoint
 fails with a message naming the output directory, and so does a parameter
-file with another number of bodies.
+file with another number of bodies. The same on an adaptive grid (the
+checkpoint carries the refined mesh) to 1e-11.
 
 Usage: checkpoint_restart.py [ranks] (default 1). With 2 ranks it also
 resumes the 2-rank checkpoint on 1 rank (the mesh is repartitioned) and
@@ -157,6 +158,22 @@ if n_ranks == 2:
     _, _, rows = run(one, scene(N), bodies, ranks=0, args=["--resume"], fresh=False)
     _, _, full_np1 = run("full_np1_reference", scene(N), bodies, ranks=0)
     compare("2-rank checkpoint resumed on 1 rank", rows, full_np1, 1e-10)
+
+# an adaptive grid (refined at the disks' surfaces and the contact, adapted
+# every 7 steps): the checkpoint carries the refined mesh and the adaptation
+# counter. Node numbering and particle order after loading differ from those
+# after an adaptation, so sums round differently: measured 3e-13.
+adaptive = {"Grid/Subdivisions": "20, 10", "Mesh refinement/Criteria": "body surface, contact",
+            "Mesh refinement/Maximum level": 1, "Mesh refinement/Refinement interval": 7}
+_, _, adaptive_full = run(f"adaptive_full_{tag}", dict(scene(N), **adaptive), bodies, ranks=ranks)
+run(f"adaptive_{tag}", dict(scene(100, 50), **adaptive), bodies, ranks=ranks)
+_, output, rows = run(f"adaptive_{tag}", dict(scene(N), **adaptive), bodies, ranks=ranks, args=["--resume"],
+                      fresh=False)
+check("adaptive grid: resumed on the refined mesh", "resumed from" in output and
+      re.search(r"step 100, t = [0-9.e-]+: (\d+) cells", output) is not None and
+      int(re.search(r"step 100, t = [0-9.e-]+: (\d+) cells", output).group(1)) > 200,
+      output.strip().splitlines()[0])
+compare("adaptive grid, stopped at 100 and resumed", rows, adaptive_full, 1e-11)
 
 # a parameter file that does not describe the saved scene
 with open(os.path.join(out, "statistics.csv")) as f:

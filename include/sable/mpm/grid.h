@@ -7,9 +7,18 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_cartesian.h>
 
+#include <sable/mpm/q1_shape.h>
+
 #include <array>
+#include <utility>
 #include <memory>
 #include <vector>
+
+namespace dealii
+{
+  template <typename number>
+  class AffineConstraints;
+}
 
 namespace sable::mpm
 {
@@ -22,17 +31,55 @@ namespace sable::mpm
    * its nodes as indices into the rank's locally relevant node range and
    * its inverse extents, and for each node the smallest adjacent cell size
    * per direction.
+   *
+   * On a locally refined mesh a cell's vertex may be a hanging node, whose
+   * value is fixed by the nodes of the coarser neighbour (the constraints
+   * of AffineConstraints / DoFTools::make_hanging_node_constraints). Such a
+   * cell carries a small table that folds its vertex shape functions into
+   * the unconstrained nodes, N_k = sum_v w_vk N_v, so that transfers
+   * scatter to and gather from unconstrained nodes only: no hanging node
+   * holds data, P2G and G2P use the same weights (exact transposes), and
+   * the folded functions keep the partition of unity and sum_k grad N_k = 0.
    */
   template <int dim>
   class Grid
   {
   public:
     static constexpr unsigned int nodes_per_cell = 1u << dim;
+    /// Most unconstrained nodes a cell's folded shape functions reach: the
+    /// vertices of its parent's children (2:1 balanced mesh).
+    static constexpr unsigned int max_nodes_per_cell = dim == 2 ? 9 : 27;
 
     struct CellData
     {
+      /// the vertices' nodes (constrained ones included)
       std::array<unsigned int, nodes_per_cell> nodes;
       Tensor<1, dim>                           inverse_h;
+      /// index into the table of cells with hanging vertices, or
+      /// numbers::invalid_unsigned_int
+      unsigned int hanging = numbers::invalid_unsigned_int;
+    };
+
+    /// The folding of a cell with hanging vertices.
+    struct HangingCell
+    {
+      unsigned int                                   n_nodes = 0;
+      std::array<unsigned int, max_nodes_per_cell>   nodes;
+      /// weights[v][k]: share of vertex v's shape function in node k
+      std::array<std::array<double, max_nodes_per_cell>, nodes_per_cell> weights;
+    };
+
+    /// Shape functions of one cell at one point, on unconstrained nodes.
+    struct Shape
+    {
+      unsigned int          n_nodes = 0;
+      const unsigned int *  nodes   = nullptr;
+      const double *        values  = nullptr;
+      const Tensor<1, dim> *gradients = nullptr;
+
+      Q1Shape<dim>                                   vertex;
+      std::array<double, max_nodes_per_cell>         folded_values;
+      std::array<Tensor<1, dim>, max_nodes_per_cell> folded_gradients;
     };
 
     explicit Grid(const parallel::distributed::Triangulation<dim> &triangulation);
@@ -45,6 +92,55 @@ namespace sable::mpm
     cell_data(const typename Triangulation<dim>::active_cell_iterator &cell) const
     {
       return cells[cell->active_cell_index()];
+    }
+
+    /// The unconstrained nodes a cell's shape functions reach.
+    std::pair<const unsigned int *, unsigned int>
+    cell_nodes(const CellData &data) const
+    {
+      if (data.hanging == numbers::invalid_unsigned_int)
+        return {data.nodes.data(), nodes_per_cell};
+      const HangingCell &h = hanging_cells[data.hanging];
+      return {h.nodes.data(), h.n_nodes};
+    }
+
+    /// Evaluate the cell's shape functions at reference point @p xi.
+    inline void
+    evaluate(const CellData &data, const Point<dim> &xi, Shape &shape) const
+    {
+      shape.vertex.evaluate(xi, data.inverse_h);
+      if (data.hanging == numbers::invalid_unsigned_int)
+        {
+          shape.n_nodes   = nodes_per_cell;
+          shape.nodes     = data.nodes.data();
+          shape.values    = shape.vertex.values.data();
+          shape.gradients = shape.vertex.gradients.data();
+          return;
+        }
+      const HangingCell &h = hanging_cells[data.hanging];
+      shape.n_nodes        = h.n_nodes;
+      shape.nodes          = h.nodes.data();
+      for (unsigned int k = 0; k < h.n_nodes; ++k)
+        {
+          double         value = 0;
+          Tensor<1, dim> gradient;
+          for (unsigned int v = 0; v < nodes_per_cell; ++v)
+            {
+              value += h.weights[v][k] * shape.vertex.values[v];
+              gradient += h.weights[v][k] * shape.vertex.gradients[v];
+            }
+          shape.folded_values[k]    = value;
+          shape.folded_gradients[k] = gradient;
+        }
+      shape.values    = shape.folded_values.data();
+      shape.gradients = shape.folded_gradients.data();
+    }
+
+    /// Number of cells with hanging vertices on this rank (owned and ghost).
+    unsigned int
+    n_hanging_cells() const
+    {
+      return hanging_cells.size();
     }
 
     /// Locally owned plus ghost nodes of this rank.
@@ -103,11 +199,16 @@ namespace sable::mpm
     const parallel::distributed::Triangulation<dim> &triangulation;
 
   private:
+    HangingCell
+    fold_hanging_vertices(const std::vector<types::global_dof_index> &dofs,
+                          const AffineConstraints<double> &constraints) const;
+
     FE_Q<dim>              fe;
     MappingCartesian<dim>  mapping;
     DoFHandler<dim>        dof_handler;
     std::shared_ptr<const Utilities::MPI::Partitioner> node_partitioner;
     std::vector<CellData> cells;
+    std::vector<HangingCell> hanging_cells;
     std::vector<Tensor<1, dim>> spacing;
     std::vector<Point<dim>>     positions;
     double                min_cell_size = 0.;

@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -56,6 +57,9 @@ namespace sable::mpm
     bool lithostatic_stress = false;
     /// Contact group: friction coefficients are set per pair of groups.
     unsigned int group = 0;
+    /// Refine around this body's surface (Mesh refinement criterion
+    /// 'body surface').
+    bool refine_surface = true;
 
     /// Axis-aligned bounding box of the shape.
     std::pair<Point<dim>, Point<dim>>
@@ -134,6 +138,48 @@ namespace sable::mpm
     }
   };
 
+  /**
+   * Local refinement of the background grid between steps (Mesh
+   * refinement subsection). Levels count from the grid the scene (or the
+   * embedding program) starts with.
+   */
+  template <int dim>
+  struct MeshRefinementParameters
+  {
+    enum class Criterion
+    {
+      body_surface,   ///< cells at a body's surface or between bodies
+      contact,        ///< cells where bodies meet each other or a wall
+      particle_count, ///< cells holding more than a number of points
+      region          ///< cells inside a box
+    };
+    /// Empty: the grid never changes.
+    std::vector<Criterion> criteria;
+    /// Finest level a criterion refines to.
+    unsigned int maximum_level = 0;
+    /// Coarsest level anywhere: the starting grid is refined to it.
+    unsigned int minimum_level = 0;
+    /// Steps between mesh adaptations.
+    unsigned int interval = 10;
+    /// particle count criterion
+    unsigned int maximum_particles_per_cell = 16;
+    /// region criterion
+    Point<dim> region_lower_corner = {};
+    Point<dim> region_upper_corner = {};
+
+    bool
+    enabled() const
+    {
+      return !criteria.empty();
+    }
+
+    bool
+    uses(const Criterion criterion) const
+    {
+      return std::find(criteria.begin(), criteria.end(), criterion) != criteria.end();
+    }
+  };
+
   enum class UpdateScheme
   {
     usl,
@@ -163,6 +209,8 @@ namespace sable::mpm
     std::map<types::boundary_id, BoundaryParameters<dim>> boundaries;
 
     ContactParameters contact;
+
+    MeshRefinementParameters<dim> refinement;
 
     /// Directory of all output; empty: write nothing.
     std::string  output_directory    = "";

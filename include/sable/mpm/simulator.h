@@ -12,6 +12,7 @@
 #include <sable/mpm/contact/body_fields.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/materials/material.h>
+#include <sable/mpm/mesh_refinement.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
 #include <sable/mpm/postprocess/statistics.h>
@@ -56,7 +57,9 @@ namespace sable::mpm
     void
     add_body(const BodyParameters<dim> &body);
 
-    /// Check the input, seed the particles, set up grid and output.
+    /// Check the input, refine the grid where the scene's refinement
+    /// criteria ask (this changes the caller's triangulation), seed the
+    /// particles, set up grid and output.
     void
     initialize();
 
@@ -118,6 +121,13 @@ namespace sable::mpm
       return *particle_handler;
     }
 
+    /// The background grid's caches (nodes, hanging-node folding).
+    const Grid<dim> &
+    get_grid() const
+    {
+      return grid;
+    }
+
     const ParticleLayout<dim> &
     get_particle_layout() const
     {
@@ -151,13 +161,13 @@ namespace sable::mpm
       Point<dim>                                        lower;
       Point<dim>                                        upper;
     };
-    /// The bodies' materials, the contact model, grid caches, boundary
-    /// conditions and an empty particle handler (initialize() and resume()).
+    /// The bodies' materials, the contact model and the refinement
+    /// criteria (initialize() and resume()).
     void
     setup_models();
-    /// Nodal vectors sized for the current grid.
+    /// An empty particle handler on the current mesh.
     void
-    setup_grid_fields();
+    create_particle_handler();
     /// The output directory and statistics.csv (continued with @p append).
     void
     setup_output(const bool append);
@@ -169,6 +179,13 @@ namespace sable::mpm
               const std::vector<OwnedCell> &owned_cells,
               const double                  widest_cell,
               types::particle_index &       next_id);
+    /// Size the nodal vectors for the current grid.
+    void
+    allocate_nodal_data();
+    /// Refine and coarsen the grid by the scene's criteria; particles
+    /// follow through the ParticleHandler, the grid caches are rebuilt.
+    void
+    adapt_mesh();
     /// Find the contact nodes of this step (bodies per node).
     void
     find_contact_nodes();
@@ -231,6 +248,10 @@ namespace sable::mpm
     BodyFields<dim>                          body_fields;
     std::unique_ptr<BardenhagenContact<dim>> contact;
     bool                                     parallel = false;
+
+    /// only with refinement criteria
+    std::unique_ptr<MeshRefinement<dim>> mesh_refinement;
+    unsigned int                         adaptations_without_change = 0;
 
     bool         initialized = false;
     double       time        = 0;

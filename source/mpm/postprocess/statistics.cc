@@ -24,7 +24,7 @@ namespace sable::mpm
       }
     file = std::make_unique<std::ofstream>(filename);
     const char *axes = "xyz";
-    *file << "step,time,dt,particles,kinetic_energy,strain_energy,gravity_energy,"
+    *file << "step,time,dt,particles,cells,kinetic_energy,strain_energy,gravity_energy,"
              "boundary_work";
     for (unsigned int d = 0; d < dim; ++d)
       *file << ",momentum_" << axes[d];
@@ -60,7 +60,7 @@ namespace sable::mpm
   {
     if (!file)
       return;
-    *file << step << ',' << time << ',' << dt << ',' << s.n_particles << ','
+    *file << step << ',' << time << ',' << dt << ',' << s.n_particles << ',' << s.n_cells << ','
           << s.kinetic_energy << ','
           << s.strain_energy << ',' << s.gravity_energy << ','
           << boundary_work;

@@ -28,6 +28,8 @@ namespace sable::mpm
     /// I^-1 L about the centre of mass (2D: the z component only)
     std::vector<Tensor<1, 3>> body_angular_velocity;
     unsigned long long          n_particles = 0;
+    /// active cells of the background grid (changes with adaptive meshes)
+    unsigned long long          n_cells = 0;
     /// frictional work of contact so far, and the last contact force per
     /// reported pair (empty without contact)
     double                      contact_heat = 0;

@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""What adaptive grids buy: scenes A1 (theta = pi/6, mu = 0.5, a rolling
+disk) and A3 (backspin sphere) on a uniform coarse grid, a uniform fine grid
+(one level finer) and a coarse grid refined to the fine size around the
+grains and where they touch (Mesh refinement criteria 'body surface,
+contact'; A3's plane keeps its surface coarse, 'Refine surface = false', and
+is refined only where the sphere touches it). Errors against the rigid-body
+solutions of contrib/validation/a1_incline.py and a2_a3.py, wall times of
+one run each on one MPI rank, all in one invocation so the times compare.
+
+Writes doc/validation/adaptivity_table.md.
+
+Usage: contrib/validation/adaptivity.py [--sable build/sable] [--work DIR]
+           [--output-dir doc/validation] [--interval 25]"""
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def a1_rigid(t):
+    """Rolling disk from rest: a = 2/3 g sin(theta) (tan(theta) < 3 mu)."""
+    a = 2.0 / 3.0 * 9.8 * math.sin(math.pi / 6)
+    return 0.5 * a * t * t, a * t
+
+
+def a3_rigid(t):
+    """Backspin sphere: friction mu g accelerates it until rolling at 2/7 s."""
+    t1 = 2.0 / 7.0
+    if t <= t1:
+        return 2.5 * t * t, 5.0 * t
+    return 2.5 * t1 * t1 + 10.0 / 7.0 * (t - t1), 10.0 / 7.0
+
+
+# name, scene, coarse subdivisions, rigid solution, cell label (coarse, fine)
+CASES = [
+    ("A1, theta = pi/6, mu = 0.5", "a1_mu05_theta30", (48, 12), a1_rigid, ("R/4", "R/8")),
+    ("A3, backspin", "a3_backspin", (20, 12, 12), a3_rigid, ("R/4", "R/8")),
+]
+
+
+def scene_text(text, subdivisions, directory, refinement, interval):
+    text, n = re.subn(r"(?m)^(\s*set Subdivisions\s*=).*$",
+                      r"\g<1> " + ", ".join(map(str, subdivisions)), text)
+    assert n == 1
+    text, n = re.subn(r"(?m)^(\s*set Output directory\s*=).*$", rf"\g<1> {directory}", text)
+    assert n == 1
+    text = re.sub(r"(?m)^(\s*set Particle output interval\s*=).*$", r"\g<1> 0", text)
+    if refinement:
+        text += ("\nsubsection Mesh refinement\n  set Criteria = body surface, contact\n"
+                 f"  set Maximum level = 1\n  set Refinement interval = {interval}\nend\n")
+        # a plane under a grain: refined only where the grain touches it
+        text = re.sub(r"(?ms)^(subsection Body 1\n)", r"\g<1>  set Refine surface = false\n", text)
+    return text
+
+
+def run(sable, work, scene, label, subdivisions, refinement, interval):
+    os.makedirs(work, exist_ok=True)
+    name = f"{scene}_{label}"
+    with open(os.path.join(ROOT, "prm", scene + ".prm")) as f:
+        text = scene_text(f.read(), subdivisions, name, refinement, interval)
+    with open(os.path.join(work, name + ".prm"), "w") as f:
+        f.write(text)
+    result = subprocess.run([sable, name + ".prm"], cwd=work, capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.stderr.write(result.stdout + result.stderr)
+        raise SystemExit(f"{name}: sable exited with {result.returncode}")
+    wall = float(re.search(r"in (\S+) s wall time", result.stdout).group(1))
+    with open(os.path.join(work, name, "statistics.csv")) as f:
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    return rows, wall
+
+
+def errors(rows, rigid):
+    x0 = rows[0]["body0_x"]
+    T = rows[-1]["time"]
+    x_rigid, v_rigid = rigid(T)
+    ex = rows[-1]["body0_x"] - x0 - x_rigid
+    ex_max = max(abs(r["body0_x"] - x0 - rigid(r["time"])[0]) for r in rows)
+    ev = rows[-1]["body0_vx"] - v_rigid
+    return dict(ex=ex, ex_rel=ex / x_rigid, ex_max=ex_max / x_rigid, ev_rel=ev / v_rigid,
+                points=int(rows[0]["particles"]), cells_start=int(rows[0]["cells"]),
+                cells_max=int(max(r["cells"] for r in rows)), steps=int(rows[-1]["step"]))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sable", default=os.path.join(ROOT, "build", "sable"))
+    parser.add_argument("--work", default=os.path.join(ROOT, "build", "validation_adaptivity"))
+    parser.add_argument("--output-dir", default=os.path.join(ROOT, "doc", "validation"))
+    parser.add_argument("--interval", type=int, default=25)
+    args = parser.parse_args()
+    lines = ["| case | grid | cells (start-max) | points | steps | wall s | x err at T | max \\|x err\\| "
+             "| v err at T | error / fine | time / fine |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for title, scene, coarse, rigid, (h_coarse, h_fine) in CASES:
+        fine = tuple(2 * n for n in coarse)
+        results = {}
+        for label, subdivisions, refine in (("coarse", coarse, False), ("fine", fine, False),
+                                            ("adaptive", coarse, True)):
+            rows, wall = run(args.sable, args.work, scene, label, subdivisions, refine, args.interval)
+            results[label] = (errors(rows, rigid), wall)
+            print(f"{title}, {label}: x err {results[label][0]['ex_rel']:+.2%}, {wall:.1f} s", flush=True)
+        e_fine, t_fine = results["fine"]
+        for label, grid in (("coarse", f"uniform {h_coarse}"), ("fine", f"uniform {h_fine}"),
+                            ("adaptive", f"{h_coarse}, {h_fine} at grains and contact")):
+            e, wall = results[label]
+            lines.append(f"| {title} | {grid} | {e['cells_start']}-{e['cells_max']} | {e['points']} | "
+                         f"{e['steps']} | {wall:.1f} | {e['ex_rel']:+.1%} | {e['ex_max']:.1%} | "
+                         f"{e['ev_rel']:+.1%} | {abs(e['ex']) / abs(e_fine['ex']):.2f} | "
+                         f"{wall / t_fine:.2f} |")
+    lines.append("")
+    lines.append("Errors relative to the rigid solution's displacement x_rigid(T) and velocity v_rigid(T), "
+                 "T = 1 s; 'error / fine' is |x err at T| over the fine grid's, 'time / fine' the wall-time "
+                 f"ratio. Refinement interval {args.interval} steps.")
+    os.makedirs(args.output_dir, exist_ok=True)
+    path = os.path.join(args.output_dir, "adaptivity_table.md")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()
