@@ -161,8 +161,8 @@ if n_ranks == 2:
 
 # an adaptive grid (refined at the disks' surfaces and the contact, adapted
 # every 7 steps): the checkpoint carries the refined mesh and the adaptation
-# counter. Node numbering and particle order after loading differ from those
-# after an adaptation, so sums round differently: measured 3e-13.
+# counter. Cells are visited in another order after loading than on a mesh
+# with a history of adaptations, so sums round differently: measured 3e-13.
 adaptive = {"Grid/Subdivisions": "20, 10", "Mesh refinement/Criteria": "body surface, contact",
             "Mesh refinement/Maximum level": 1, "Mesh refinement/Refinement interval": 7}
 _, _, adaptive_full = run(f"adaptive_full_{tag}", dict(scene(N), **adaptive), bodies, ranks=ranks)
