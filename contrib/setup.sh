@@ -4,7 +4,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-packages=(libdeal.ii-dev cmake g++ make numdiff ccache openmpi-bin python3 python3-matplotlib)
+packages=(libdeal.ii-dev cmake g++ make numdiff ccache openmpi-bin python3 python3-matplotlib hdf5-tools)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

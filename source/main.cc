@@ -17,7 +17,7 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: sable <scene.prm>\n"
+    out << "Usage: sable <scene.prm> [--resume]\n"
            "       sable --print-parameters [mpm|qusgm] [2|3]\n"
            "       sable --help\n\n"
            "Runs the granular-mechanics scene described by the parameter file.\n"
@@ -25,7 +25,11 @@ namespace
            "frictional contact or the quasi-static sphere-pack model;\n"
            "'set Dimension = 2|3' the MPM space dimension. Output goes to\n"
            "'set Output directory'. --print-parameters writes every entry\n"
-           "with its default and documentation (see doc/parameters.md).\n";
+           "with its default and documentation (see doc/parameters.md).\n\n"
+           "--resume (MPM) continues the run from the last checkpoint in\n"
+           "its output directory (written with 'Output/Checkpoint interval'\n"
+           "> 0), to the End time and step limit the file gives now;\n"
+           "statistics.csv is continued as if the run had not stopped.\n";
   }
 
   void
@@ -72,7 +76,8 @@ main(int argc, char **argv)
             print_parameters(model, dim);
           return 0;
         }
-      if (argc > 2 || first.rfind("-", 0) == 0)
+      const bool resume = argc == 3 && std::string(argv[2]) == "--resume";
+      if ((argc > 2 && !resume) || first.rfind("-", 0) == 0)
         {
           if (root)
             {
@@ -85,11 +90,16 @@ main(int argc, char **argv)
       const sable::CommonParameters common =
         sable::read_common_parameters(first);
       if (common.model == sable::Model::qusgm)
-        sable::qusgm::run_scene(first, MPI_COMM_WORLD);
+        {
+          if (resume)
+            throw sable::InputError("--resume: checkpoints exist for MPM scenes only "
+                                    "('Model = mpm'), this scene is QuSGM");
+          sable::qusgm::run_scene(first, MPI_COMM_WORLD);
+        }
       else if (common.dimension == 3)
-        sable::mpm::run_scene<3>(first, MPI_COMM_WORLD);
+        sable::mpm::run_scene<3>(first, MPI_COMM_WORLD, resume);
       else
-        sable::mpm::run_scene<2>(first, MPI_COMM_WORLD);
+        sable::mpm::run_scene<2>(first, MPI_COMM_WORLD, resume);
     }
   catch (const sable::InputError &error)
     {

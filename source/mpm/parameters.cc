@@ -429,8 +429,25 @@ namespace sable::mpm
     prm.declare_entry("Particle output interval",
                       "0",
                       Patterns::Double(0),
-                      "Simulated time between particle VTU files, s "
+                      "Simulated time between particle files, s "
                       "(0: no particle output).");
+    prm.declare_entry("Output format",
+                      "vtu",
+                      Patterns::Selection("vtu|hdf5"),
+                      "Format of the particle files. vtu: one "
+                      "particles_NNNNN.pvtu (with a .vtu per rank) per output "
+                      "time and the series particles.pvd. hdf5: one "
+                      "particles_NNNNN.h5 per output time, written by all "
+                      "ranks together (MPI-IO), and the series "
+                      "particles.xdmf for ParaView/VisIt.");
+    prm.declare_entry("Checkpoint interval",
+                      "0",
+                      Patterns::Integer(0),
+                      "Steps between checkpoints (0: none). A checkpoint "
+                      "(the directory 'checkpoint' in the output directory: "
+                      "mesh, material points and simulator state) is also "
+                      "written when the run ends. 'sable scene.prm --resume' "
+                      "continues from it.");
     prm.declare_entry("Contact node output",
                       "false",
                       Patterns::Bool(),
@@ -554,6 +571,11 @@ namespace sable::mpm
     check_input(p.statistics_interval >= 1, "Output/Statistics interval", p.statistics_interval, "an integer >= 1");
     check_input(p.progress_interval >= 1, "Output/Progress interval", p.progress_interval, "an integer >= 1");
     check_input(!p.bodies.empty(), "Number of bodies", 0, "at least one body");
+#ifndef DEAL_II_WITH_HDF5
+    check_input(p.output_format != OutputFormat::hdf5,
+                "Output/Output format", "hdf5",
+                "vtu (the deal.II library in use was built without HDF5)");
+#endif
     for (const auto &[id, boundary] : p.boundaries)
       {
         if (boundary.type == BoundaryType::friction)
@@ -768,6 +790,8 @@ namespace sable::mpm
 
     prm.enter_subsection("Output");
     p.output_interval     = prm.get_double("Particle output interval");
+    p.output_format       = prm.get("Output format") == "hdf5" ? OutputFormat::hdf5 : OutputFormat::vtu;
+    p.checkpoint_interval = prm.get_integer("Checkpoint interval");
     p.contact_node_output = prm.get_bool("Contact node output");
     p.statistics_interval = prm.get_integer("Statistics interval");
     p.progress_interval   = prm.get_integer("Progress interval");

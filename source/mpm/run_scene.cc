@@ -1,5 +1,6 @@
 #include <deal.II/grid/grid_generator.h>
 
+#include <sable/mpm/checkpoint.h>
 #include <sable/mpm/run_scene.h>
 #include <sable/mpm/simulator.h>
 
@@ -26,15 +27,20 @@ namespace sable::mpm
 
   template <int dim>
   void
-  run_scene(const std::string &filename, MPI_Comm communicator)
+  run_scene(const std::string &filename, MPI_Comm communicator, const bool resume)
   {
     const Scene<dim> scene = read_scene<dim>(filename);
+    // the checkpoint to resume from, before any work
+    const std::string checkpoint =
+      resume ? find_checkpoint(scene.simulator.output_directory, communicator, std::cout) : "";
     parallel::distributed::Triangulation<dim> triangulation(communicator);
     make_grid(scene.grid, triangulation);
     std::optional<Simulator<dim>> simulator;
     simulator.emplace(triangulation, scene.simulator);
     try
       {
+        if (resume)
+          simulator->resume(checkpoint);
         simulator->run();
       }
     catch (...)
@@ -48,6 +54,6 @@ namespace sable::mpm
 
   template void make_grid<2>(const GridParameters<2> &, parallel::distributed::Triangulation<2> &);
   template void make_grid<3>(const GridParameters<3> &, parallel::distributed::Triangulation<3> &);
-  template void run_scene<2>(const std::string &, MPI_Comm);
-  template void run_scene<3>(const std::string &, MPI_Comm);
+  template void run_scene<2>(const std::string &, MPI_Comm, bool);
+  template void run_scene<3>(const std::string &, MPI_Comm, bool);
 } // namespace sable::mpm

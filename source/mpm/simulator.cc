@@ -1,3 +1,4 @@
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
@@ -75,11 +76,8 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::initialize()
+  Simulator<dim>::setup_models()
   {
-    if (initialized)
-      return;
-    TimerOutput::Scope scope(timer, "initialize");
     check_parameters(parameters);
     // every body must lie inside the grid
     {
@@ -116,15 +114,15 @@ namespace sable::mpm
       }
 
     if (parameters.refinement.enabled())
-      {
-        mesh_refinement =
-          std::make_unique<MeshRefinement<dim>>(parameters.refinement,
-                                                parameters.boundaries,
-                                                parameters.bodies);
-        mesh_refinement->refine_initial(triangulation, parameters.bodies);
-      }
-    grid.setup();
-    boundary_conditions.setup(grid);
+      mesh_refinement = std::make_unique<MeshRefinement<dim>>(parameters.refinement,
+                                                              parameters.boundaries,
+                                                              parameters.bodies);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::create_particle_handler()
+  {
     particle_handler = std::make_unique<Particles::ParticleHandler<dim>>(
       triangulation, grid.get_mapping(), layout.n_properties());
     particle_handler->signals.particle_lost.connect(
@@ -132,6 +130,49 @@ namespace sable::mpm
         ++lost_particles;
         lost_location = particle->get_location();
       });
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::setup_output(const bool append)
+  {
+    const bool write = !parameters.output_directory.empty();
+    if (write)
+      {
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          std::filesystem::create_directories(parameters.output_directory);
+        MPI_Barrier(communicator);
+      }
+    statistics_file = std::make_unique<StatisticsFile<dim>>(
+      parameters.output_directory + "/statistics.csv",
+      parameters.bodies.size(),
+      use_contact,
+      parameters.contact.reported_pairs,
+      write && Utilities::MPI::this_mpi_process(communicator) == 0,
+      append);
+  }
+
+  template <int dim>
+  bool
+  Simulator<dim>::finished() const
+  {
+    return time >= parameters.end_time * (1 - 1e-14) ||
+           (parameters.maximum_steps > 0 && step_number >= parameters.maximum_steps);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::initialize()
+  {
+    if (initialized)
+      return;
+    TimerOutput::Scope scope(timer, "initialize");
+    setup_models();
+    if (mesh_refinement)
+      mesh_refinement->refine_initial(triangulation, parameters.bodies);
+    grid.setup();
+    boundary_conditions.setup(grid);
+    create_particle_handler();
 
     // seed every body; ids are unique over all ranks
     // the locally owned cells sorted by their lower x, so that each body
@@ -198,19 +239,7 @@ namespace sable::mpm
     initial_energy         = statistics.kinetic_energy + statistics.strain_energy;
     initial_gravity_energy = statistics.gravity_energy;
 
-    const bool write = !parameters.output_directory.empty();
-    if (write)
-      {
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          std::filesystem::create_directories(parameters.output_directory);
-        MPI_Barrier(communicator);
-      }
-    statistics_file = std::make_unique<StatisticsFile<dim>>(
-      parameters.output_directory + "/statistics.csv",
-      parameters.bodies.size(),
-      use_contact,
-      parameters.contact.reported_pairs,
-      write && Utilities::MPI::this_mpi_process(communicator) == 0);
+    setup_output(false);
     statistics_file->write_row(0, 0., 0., 0., statistics);
 
     pcout << "sable MPM " << dim << "D: " << triangulation.n_global_active_cells()
@@ -225,7 +254,7 @@ namespace sable::mpm
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s)"
           << std::endl;
     initialized = true;
-    if (write && parameters.output_interval > 0)
+    if (!parameters.output_directory.empty() && parameters.output_interval > 0)
       write_particles();
   }
 
@@ -984,13 +1013,53 @@ namespace sable::mpm
     data_out.build_patches(*particle_handler, names, interpretation);
     if (use_contact && parameters.contact_node_output)
       write_contact_nodes(output_counter);
-    const std::string name = data_out.write_vtu_with_pvtu_record(
-      parameters.output_directory + "/", "particles", output_counter++, communicator, 5);
-    particle_files.emplace_back(time, name);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+    if (parameters.output_format == OutputFormat::hdf5)
       {
-        std::ofstream pvd(parameters.output_directory + "/particles.pvd");
-        DataOutBase::write_pvd_record(pvd, particle_files);
+        // one file for all ranks (collective MPI-IO), no merging of
+        // material points that share a location. deal.II 9.4's writer
+        // hangs if a rank has no patches (it skips collective dataset
+        // writes), so only the ranks that hold material points write, and
+        // the first of them hands the XDMF entry to everybody.
+        const std::string name =
+          "particles_" + Utilities::int_to_string(output_counter++, 5) + ".h5";
+        const unsigned int rank       = Utilities::MPI::this_mpi_process(communicator);
+        const bool         has_points = particle_handler->n_locally_owned_particles() > 0;
+        const unsigned int first_writer =
+          Utilities::MPI::min(has_points ? rank : numbers::invalid_unsigned_int, communicator);
+        if (first_writer != numbers::invalid_unsigned_int)
+          {
+            MPI_Comm writers;
+            MPI_Comm_split(communicator, has_points ? 0 : MPI_UNDEFINED, rank, &writers);
+            XDMFEntry entry;
+            if (has_points)
+              {
+                DataOutBase::DataOutFilter filter(
+                  DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/false,
+                                                  /*xdmf_hdf5_output=*/true));
+                data_out.write_filtered_data(filter);
+                data_out.write_hdf5_parallel(filter,
+                                             parameters.output_directory + "/" + name,
+                                             writers);
+                entry = data_out.create_xdmf_entry(filter, name, time, writers);
+                MPI_Comm_free(&writers);
+              }
+            xdmf_entries.push_back(Utilities::MPI::broadcast(communicator, entry, first_writer));
+            if (rank == 0)
+              data_out.write_xdmf_file(xdmf_entries,
+                                       parameters.output_directory + "/particles.xdmf",
+                                       MPI_COMM_SELF);
+          }
+      }
+    else
+      {
+        const std::string name = data_out.write_vtu_with_pvtu_record(
+          parameters.output_directory + "/", "particles", output_counter++, communicator, 5);
+        particle_files.emplace_back(time, name);
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          {
+            std::ofstream pvd(parameters.output_directory + "/particles.pvd");
+            DataOutBase::write_pvd_record(pvd, particle_files);
+          }
       }
     next_output_time = time + parameters.output_interval;
   }
@@ -1092,10 +1161,12 @@ namespace sable::mpm
     Timer wall;
     const bool write_output =
       !parameters.output_directory.empty() && parameters.output_interval > 0;
-    const auto finished = [&]() {
-      return time >= parameters.end_time * (1 - 1e-14) ||
-             (parameters.maximum_steps > 0 && step_number >= parameters.maximum_steps);
-    };
+    const bool write_checkpoints =
+      !parameters.output_directory.empty() && parameters.checkpoint_interval > 0;
+    // where this run started (later than 0 after resume()), for the
+    // estimate of the time left
+    const double       first_time = time;
+    const unsigned int first_step = step_number;
     while (!finished())
       {
         step();
@@ -1111,9 +1182,11 @@ namespace sable::mpm
             if (progress)
               {
                 const double elapsed = wall.wall_time();
-                double       fraction = time / parameters.end_time;
-                if (parameters.maximum_steps > 0)
-                  fraction = std::max(fraction, double(step_number) / parameters.maximum_steps);
+                double       fraction = (time - first_time) / (parameters.end_time - first_time);
+                if (parameters.maximum_steps > first_step)
+                  fraction = std::max(fraction,
+                                      double(step_number - first_step) /
+                                        (parameters.maximum_steps - first_step));
                 pcout << "step " << std::setw(7) << step_number << "  t = " << std::setprecision(4)
                       << std::scientific << time << "  dt = " << time_step
                       << "  E_kin = " << s.kinetic_energy << "  E_strain = " << s.strain_energy
@@ -1122,14 +1195,24 @@ namespace sable::mpm
                       << std::defaultfloat << std::setprecision(6) << std::endl;
               }
           }
-        if (write_output && (time >= next_output_time * (1 - 1e-12) || last))
+        const bool output_due = write_output && time >= next_output_time * (1 - 1e-12);
+        if (output_due)
+          write_particles();
+        // the checkpoint holds the state an uninterrupted run has at this
+        // step: before the extra particle output of the last step
+        if (write_checkpoints && (step_number % parameters.checkpoint_interval == 0 || last))
+          save_checkpoint();
+        if (write_output && last && !output_due)
           write_particles();
       }
     if (parameters.print_timings)
       timer.print_summary();
     if (!parameters.output_directory.empty())
-      pcout << "Output written to " << parameters.output_directory
-            << "/ (statistics.csv" << (write_output ? ", particles.pvd" : "") << ")" << std::endl;
+      pcout << "Output written to " << parameters.output_directory << "/ (statistics.csv"
+            << (write_output ? (parameters.output_format == OutputFormat::hdf5 ? ", particles.xdmf" :
+                                                                                  ", particles.pvd") :
+                               "")
+            << (write_checkpoints ? ", checkpoint/" : "") << ")" << std::endl;
     pcout << "Finished " << step_number << " steps to t = " << time << " in "
           << wall.wall_time() << " s wall time" << std::endl;
   }

@@ -40,19 +40,21 @@ def prm_text(entries, bodies):
     return "\n".join(lines) + "\n"
 
 
-def run(name, entries, bodies, ranks=0, expect_success=True):
-    """Run a scene in WORK/name; return (returncode, stdout+stderr, rows)."""
+def run(name, entries, bodies, ranks=0, expect_success=True, args=(), fresh=True, timeout=None):
+    """Run a scene in WORK/name (emptied first unless not `fresh`), with
+    extra program arguments `args`; return (returncode, stdout+stderr, rows)."""
     directory = os.path.join(WORK, name)
-    shutil.rmtree(directory, ignore_errors=True)
-    os.makedirs(directory)
+    if fresh:
+        shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory, exist_ok=True)
     entries = dict(entries)
     entries.setdefault("Output directory", "output")
     with open(os.path.join(directory, "scene.prm"), "w") as f:
         f.write(prm_text(entries, bodies))
-    command = [SABLE, "scene.prm"]
+    command = [SABLE, "scene.prm"] + list(args)
     if ranks:
         command = [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + command
-    result = subprocess.run(command, cwd=directory, capture_output=True, text=True)
+    result = subprocess.run(command, cwd=directory, capture_output=True, text=True, timeout=timeout)
     output = result.stdout + result.stderr
     if expect_success and result.returncode != 0:
         print(output)

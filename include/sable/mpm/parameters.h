@@ -186,6 +186,13 @@ namespace sable::mpm
     musl
   };
 
+  /// File format of the particle output.
+  enum class OutputFormat
+  {
+    vtu, ///< particles_NNNNN.vtu/.pvtu and particles.pvd
+    hdf5 ///< particles_NNNNN.h5 and particles.xdmf
+  };
+
   template <int dim>
   struct SimulatorParameters
   {
@@ -207,12 +214,16 @@ namespace sable::mpm
 
     /// Directory of all output; empty: write nothing.
     std::string  output_directory    = "";
-    double       output_interval     = 0.; ///< particle VTU; 0 = off
+    double       output_interval     = 0.; ///< particle files; 0 = off
+    OutputFormat output_format       = OutputFormat::vtu;
     /// with the particle output, also the contact nodes (VTU)
     bool         contact_node_output = false;
     unsigned int statistics_interval = 1;  ///< steps between CSV rows
     unsigned int progress_interval   = 100;
     bool         print_timings       = true;
+    /// Steps between checkpoints (and one at the end of the run);
+    /// 0 = no checkpoints.
+    unsigned int checkpoint_interval = 0;
 
     /// Stop when kinetic + strain energy exceeds this factor times the
     /// largest energy the scene could hold (see doc/user_guide.md).

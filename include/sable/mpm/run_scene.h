@@ -16,10 +16,11 @@ namespace sable::mpm
   make_grid(const GridParameters<dim> &                 parameters,
             parallel::distributed::Triangulation<dim> &triangulation);
 
-  /// Read, check and run the MPM scene in @p filename.
+  /// Read, check and run the MPM scene in @p filename; with @p resume,
+  /// continue it from the last checkpoint in its output directory.
   template <int dim>
   void
-  run_scene(const std::string &filename, MPI_Comm communicator);
+  run_scene(const std::string &filename, MPI_Comm communicator, const bool resume = false);
 } // namespace sable::mpm
 
 #endif

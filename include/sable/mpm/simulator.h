@@ -21,6 +21,11 @@
 #include <string>
 #include <vector>
 
+namespace dealii
+{
+  class XDMFEntry;
+}
+
 namespace sable::mpm
 {
   using namespace dealii;
@@ -63,9 +68,33 @@ namespace sable::mpm
     step();
 
     /// initialize() if needed, then step to the end time or step limit,
-    /// with progress lines, statistics and output.
+    /// with progress lines, statistics, output and checkpoints.
     void
     run();
+
+    /**
+     * Write a checkpoint of the run into @p directory (collective): the
+     * mesh and the material points with all their properties through
+     * Triangulation::save(), and the simulator's own state (time, step,
+     * energy bookkeeping, output series, contact heat, ...) in a side file.
+     * The checkpoint is first written to @p directory.tmp and then renamed
+     * into place, the previous one kept as @p directory.old until then, so
+     * an interrupted write never leaves no usable checkpoint
+     * (source/mpm/checkpoint.cc). Empty: <output directory>/checkpoint.
+     */
+    void
+    save_checkpoint(const std::string &directory = "");
+
+    /**
+     * Instead of initialize(): continue the run saved in the checkpoint
+     * @p directory (see find_checkpoint() in sable/mpm/checkpoint.h). The
+     * triangulation must be the unrefined coarse mesh the saved run started
+     * from and the parameters those of that run (times, step limits and
+     * output settings may differ). statistics.csv keeps the rows up to the
+     * checkpoint's step and is continued.
+     */
+    void
+    resume(const std::string &directory);
 
     double
     get_time() const
@@ -132,6 +161,19 @@ namespace sable::mpm
       Point<dim>                                        lower;
       Point<dim>                                        upper;
     };
+    /// The bodies' materials, the contact model and the refinement
+    /// criteria (initialize() and resume()).
+    void
+    setup_models();
+    /// An empty particle handler on the current mesh.
+    void
+    create_particle_handler();
+    /// The output directory and statistics.csv (continued with @p append).
+    void
+    setup_output(const bool append);
+    /// Whether the end time or the step limit is reached.
+    bool
+    finished() const;
     void
     seed_body(const unsigned int            body_index,
               const std::vector<OwnedCell> &owned_cells,
@@ -228,6 +270,8 @@ namespace sable::mpm
     std::unique_ptr<StatisticsFile<dim>>              statistics_file;
     std::vector<std::pair<double, std::string>>       particle_files;
     std::vector<std::pair<double, std::string>>       contact_node_files;
+    /// HDF5 output: one entry per particle file, for particles.xdmf
+    std::vector<XDMFEntry>                            xdmf_entries;
     double                                            next_output_time = 0;
     unsigned int                                      output_counter   = 0;
   };

@@ -10,11 +10,18 @@ namespace sable::mpm
     const unsigned int                                        n_bodies,
     const bool                                                with_contact,
     const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
-    const bool                                                write)
+    const bool                                                write,
+    const bool                                                append)
     : with_contact(with_contact)
   {
     if (!write)
       return;
+    if (append)
+      {
+        file = std::make_unique<std::ofstream>(filename, std::ios::app);
+        *file << std::setprecision(17);
+        return;
+      }
     file = std::make_unique<std::ofstream>(filename);
     const char *axes = "xyz";
     *file << "step,time,dt,particles,cells,kinetic_energy,strain_energy,gravity_energy,"

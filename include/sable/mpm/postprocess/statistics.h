@@ -39,7 +39,8 @@ namespace sable::mpm
   /**
    * statistics.csv: one row per recorded step (DESIGN.md, output
    * conventions). Only rank 0 writes; every value with 17 significant
-   * digits so runs can be compared to round-off.
+   * digits so runs can be compared to round-off. With @p append (a resumed
+   * run) the rows go after those already in the file, without a header.
    */
   template <int dim>
   class StatisticsFile
@@ -49,7 +50,8 @@ namespace sable::mpm
                    const unsigned int n_bodies,
                    const bool         with_contact,
                    const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
-                   const bool         write);
+                   const bool         write,
+                   const bool         append = false);
 
     void
     write_row(const unsigned int       step,
