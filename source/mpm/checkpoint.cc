@@ -146,6 +146,7 @@ namespace sable::mpm
       double                next_output_time        = 0;
       unsigned int          output_counter          = 0;
       unsigned int          adaptations_without_change = 0;
+      double                travel_since_adaptation    = 0;
       bool                  with_contact            = false;
       double                frictional_heat         = 0;
       double                momentum_defect         = 0;
@@ -162,7 +163,7 @@ namespace sable::mpm
         ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &grid_box;
         ar &n_particles &step_number &time &time_step &max_signal_speed &boundary_work;
         ar &initial_energy &initial_gravity_energy &energy_floor &largest_gravity_release;
-        ar &next_output_time &output_counter &adaptations_without_change;
+        ar &next_output_time &output_counter &adaptations_without_change &travel_since_adaptation;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction &pair_forces;
         ar &particle_files &contact_node_files &xdmf_entries;
       }
@@ -336,6 +337,7 @@ namespace sable::mpm
     state.next_output_time        = next_output_time;
     state.output_counter          = output_counter;
     state.adaptations_without_change = adaptations_without_change;
+    state.travel_since_adaptation    = travel_since_adaptation;
     state.particle_files          = particle_files;
     state.contact_node_files      = contact_node_files;
     state.xdmf_entries            = xdmf_entries;
@@ -473,6 +475,7 @@ namespace sable::mpm
     next_output_time        = state.next_output_time;
     output_counter          = state.output_counter;
     adaptations_without_change = state.adaptations_without_change;
+    travel_since_adaptation    = state.travel_since_adaptation;
     particle_files          = state.particle_files;
     contact_node_files      = state.contact_node_files;
     xdmf_entries            = state.xdmf_entries;

@@ -408,11 +408,13 @@ namespace sable::mpm
                       "Coarsest level anywhere: the starting grid is refined "
                       "globally to it; at most the maximum level.");
     prm.declare_entry("Refinement interval",
-                      "10",
-                      Patterns::Integer(1),
-                      "Steps between mesh adaptations (>= 1). A body moves "
-                      "with the refined band only if it crosses less than about "
-                      "one fine cell in this many steps.");
+                      "0",
+                      Patterns::Integer(0),
+                      "Steps between mesh adaptations; 0: adapt whenever the "
+                      "fastest material point may have moved half of the "
+                      "smallest cell since the last adaptation. A body stays in "
+                      "its refined band only if it crosses less than about one "
+                      "fine cell between adaptations.");
     prm.declare_entry("Maximum particles per cell",
                       "16",
                       Patterns::Integer(1),
@@ -593,7 +595,6 @@ namespace sable::mpm
                 "Mesh refinement/Minimum level",
                 r.minimum_level,
                 "a level <= 'Maximum level' = " + std::to_string(r.maximum_level));
-    check_input(r.interval >= 1, "Mesh refinement/Refinement interval", r.interval, "an integer >= 1");
     if (r.enabled())
       check_input(r.maximum_level > r.minimum_level,
                   "Mesh refinement/Maximum level",

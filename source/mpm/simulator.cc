@@ -247,7 +247,9 @@ namespace sable::mpm
     if (mesh_refinement)
       pcout << " (levels " << parameters.refinement.minimum_level << "-"
             << triangulation.n_global_levels() - 1 << ", adapted every "
-            << parameters.refinement.interval << " steps)";
+            << (parameters.refinement.interval > 0 ?
+                  std::to_string(parameters.refinement.interval) + " steps)" :
+                  std::string("half a fine cell of travel)"));
     pcout << ", " << particle_handler->n_global_particles()
           << " material points in " << parameters.bodies.size() << " bod"
           << (parameters.bodies.size() == 1 ? "y" : "ies") << ", "
@@ -275,6 +277,7 @@ namespace sable::mpm
   void
   Simulator<dim>::adapt_mesh()
   {
+    travel_since_adaptation = 0;
     std::vector<typename MeshRefinement<dim>::CellContent> contents(
       triangulation.n_active_cells());
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -652,7 +655,7 @@ namespace sable::mpm
                                     const bool update_stresses)
   {
     const double alpha = parameters.pic_fraction;
-    double       max_speed = 0;
+    double       max_speed = 0, max_particle_speed = 0;
     bool         failed = false, too_far = false;
     Point<dim>   failure_location;
     typename Grid<dim>::Shape shape;
@@ -717,6 +720,7 @@ namespace sable::mpm
                 location += displacement;
                 particle.set_location(location);
                 max_speed = std::max(max_speed, std::sqrt(speed2) + body_wave_speed[body]);
+                max_particle_speed = std::max(max_particle_speed, std::sqrt(speed2));
                 if (!std::isfinite(speed2))
                   {
                     failed           = true;
@@ -752,7 +756,18 @@ namespace sable::mpm
           }
       }
     if (update_positions)
-      max_signal_speed = Utilities::MPI::max(max_speed, communicator);
+      {
+        if (mesh_refinement)
+          {
+            // the fastest point's travel since the last adaptation
+            std::vector<double> speeds = {max_speed, max_particle_speed};
+            Utilities::MPI::max(speeds, communicator, speeds);
+            max_signal_speed = speeds[0];
+            travel_since_adaptation += speeds[1] * time_step;
+          }
+        else
+          max_signal_speed = Utilities::MPI::max(max_speed, communicator);
+      }
     report_failure(failed, failure_location, "a velocity or stress is not a finite number (NaN or infinity)");
     report_failure(too_far, failure_location,
                    "a material point moved more than one cell in one step "
@@ -846,7 +861,12 @@ namespace sable::mpm
     }
     time += time_step;
     ++step_number;
-    if (mesh_refinement && step_number % parameters.refinement.interval == 0)
+    // adapt every 'Refinement interval' steps, or (interval 0) when a point
+    // may have moved half of the smallest cell since the last adaptation
+    const unsigned int interval = parameters.refinement.interval;
+    if (mesh_refinement &&
+        (interval > 0 ? step_number % interval == 0 :
+                        travel_since_adaptation >= 0.5 * grid.minimum_cell_size()))
       {
         TimerOutput::Scope scope(timer, "mesh adaptation");
         adapt_mesh();

@@ -159,8 +159,9 @@ namespace sable::mpm
     unsigned int maximum_level = 0;
     /// Coarsest level anywhere: the starting grid is refined to it.
     unsigned int minimum_level = 0;
-    /// Steps between mesh adaptations.
-    unsigned int interval = 10;
+    /// Steps between mesh adaptations; 0: whenever a point may have moved
+    /// half of the smallest cell since the last one.
+    unsigned int interval = 0;
     /// particle count criterion
     unsigned int maximum_particles_per_cell = 16;
     /// region criterion

@@ -252,6 +252,7 @@ namespace sable::mpm
     /// only with refinement criteria
     std::unique_ptr<MeshRefinement<dim>> mesh_refinement;
     unsigned int                         adaptations_without_change = 0;
+    double                               travel_since_adaptation    = 0;
 
     bool         initialized = false;
     double       time        = 0;
