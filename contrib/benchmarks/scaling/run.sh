@@ -2,9 +2,11 @@
 # Strong scaling from one to two cores, by MPI ranks and by threads:
 #  - MPM: a linear-elastic box filling the grid (as throughput/run.sh), 2D
 #    256^2 cells and 3D 32^3 cells with 2^dim points per cell (262,144
-#    points), 100 steps, output off; wall time of the time loop for
-#    1 rank x 1 thread, 2 ranks x 1 thread, 1 rank x 2 threads, each triple
-#    repeated (ratios are taken within one repetition);
+#    points), 50 steps, output off; wall time of the time loop for
+#    1 rank x 1 thread, 2 ranks x 1 thread, 1 rank x 2 threads, the triple
+#    repeated; ratios within each repetition and of the fastest of each
+#    configuration over all repetitions (on a shared machine the minimum is
+#    the time least disturbed by other jobs);
 #  - MPM load balance: the same grid with the points in one quarter
 #    (2D, 128^2 of the 256^2 cells), 2 ranks with and without
 #    'Solver/Balance particles across ranks';
@@ -13,14 +15,14 @@
 #  - QuSGM: one evaluation of Pi and grad Pi and one increment with 1 and 2
 #    threads (qusgm_benchmark threads), bit-identity of the results.
 # Usage: contrib/benchmarks/scaling/run.sh [build dir] [QuSGM grains = 2740]
-#        [QuSGM pack cache = /tmp/qusgm-cache] [repetitions = 2]
+#        [QuSGM pack cache = /tmp/qusgm-cache] [repetitions = 3]
 # Needs the `benchmarks` target built (cmake --build build --target benchmarks).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
 grains="${2:-2740}"
 cache="${3:-/tmp/qusgm-cache}"
-repeats="${4:-2}"
+repeats="${4:-3}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 mpirun=(mpirun --allow-run-as-root --oversubscribe)
@@ -38,7 +40,7 @@ set Output directory = $work/out
 set Number of bodies = 1
 subsection Time
   set End time = 100
-  set Maximum number of steps = 100
+  set Maximum number of steps = 50
   set CFL number = 0.5
 end
 subsection Solver
@@ -53,8 +55,8 @@ subsection Boundary conditions
   set Types = 0: slip, 1: slip, 2: slip, 3: slip
 end
 subsection Output
-  set Statistics interval = 100
-  set Progress interval = 100
+  set Statistics interval = 50
+  set Progress interval = 50
 end
 subsection Body 0
   set Shape = box
@@ -70,6 +72,8 @@ PRM
 
 seconds() { grep -o 'in [0-9.e+-]* s wall time' "$1" | awk '{print $2}'; }
 ratio() { python3 -c "print(f'{$1/$2:.2f}')"; }
+minimum() { python3 -c "import sys; print(min(map(float, sys.argv[1:])))" "$@"; }
+load() { cut -d' ' -f1 /proc/loadavg; }
 split() { # the TimerOutput rows of a log, as "name time"
   grep -E '^\| (particles to grid|grid to particles|grid update|sort particles)' "$1" |
     awk -F'|' '{gsub(/^ +| +$/, "", $2); gsub(/s$/, "", $4); printf "%s=%s  ", $2, $4}'
@@ -81,16 +85,21 @@ echo "# machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ 
 for case in "2 256" "3 32"; do
   set -- $case
   scene "$1" "$2" 1 > "$work/s.prm"
+  all_a=(); all_b=(); all_c=()
   for r in $(seq "$repeats"); do
+    l=$(load)
     "$build/sable" --threads 1 "$work/s.prm" > "$work/a.log"
     "${mpirun[@]}" -np 2 "$build/sable" --threads 1 "$work/s.prm" > "$work/b.log"
     "$build/sable" --threads 2 "$work/s.prm" > "$work/c.log"
     a=$(seconds "$work/a.log"); b=$(seconds "$work/b.log"); c=$(seconds "$work/c.log")
-    echo "MPM ${1}D run $r: 1x1 $a s, 2 ranks $b s (x$(ratio "$a" "$b")), 2 threads $c s (x$(ratio "$a" "$c"))"
+    all_a+=("$a"); all_b+=("$b"); all_c+=("$c")
+    echo "MPM ${1}D run $r (load $l): 1x1 $a s, 2 ranks $b s (x$(ratio "$a" "$b")), 2 threads $c s (x$(ratio "$a" "$c"))"
     echo "  1x1:       $(split "$work/a.log")"
     echo "  2 ranks:   $(split "$work/b.log")"
     echo "  2 threads: $(split "$work/c.log")"
   done
+  a=$(minimum "${all_a[@]}"); b=$(minimum "${all_b[@]}"); c=$(minimum "${all_c[@]}")
+  echo "MPM ${1}D fastest of $repeats: 1x1 $a s, 2 ranks $b s (x$(ratio "$a" "$b")), 2 threads $c s (x$(ratio "$a" "$c"))"
   grep 'particles per rank' "$work/b.log" | sed 's/^/  2 ranks: /'
 done
 
@@ -102,7 +111,7 @@ for r in $(seq "$repeats"); do
   scene 2 256 0.5 false > "$work/s.prm"
   "${mpirun[@]}" -np 2 "$build/sable" "$work/s.prm" > "$work/c.log"
   a=$(seconds "$work/a.log"); b=$(seconds "$work/b.log"); c=$(seconds "$work/c.log")
-  echo "MPM 2D, points in a quarter, run $r: 1 rank $a s; 2 ranks balanced $b s (x$(ratio "$a" "$b")), unbalanced $c s (x$(ratio "$a" "$c"))"
+  echo "MPM 2D, points in a quarter, run $r (load $(load)): 1 rank $a s; 2 ranks balanced $b s (x$(ratio "$a" "$b")), unbalanced $c s (x$(ratio "$a" "$c"))"
   [ "$r" = 1 ] && grep 'particles per rank' "$work/b.log" | sed 's/^/  balanced:   /' &&
     grep 'particles per rank' "$work/c.log" | sed 's/^/  unbalanced: /'
 done
@@ -116,7 +125,7 @@ for r in $(seq "$repeats"); do
   python3 - "$a" "$b" <<'PY'
 import sys
 full, small = map(float, sys.argv[1:])
-cells, p_full, p_small, steps = 65536, 262144, 16384, 100
+cells, p_full, p_small, steps = 65536, 262144, 16384, 50
 per_particle = (full - small) / (p_full - p_small) / steps
 per_cell = (small / steps - per_particle * p_small) / cells
 print(f"cost per step: {1e6*per_cell:.3f} us per cell, {1e6*per_particle:.3f} us per material point"
