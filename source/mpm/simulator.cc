@@ -169,14 +169,8 @@ namespace sable::mpm
           });
         rebalance();
       }
-    else
-      {
-        if (use_contact && parallel)
-          particle_handler->exchange_ghost_particles(true);
-        setup_nodal_vectors();
-        if (parallel)
-          print_balance();
-      }
+    else if (use_contact && parallel)
+      particle_handler->exchange_ghost_particles(true);
     {
       std::vector<unsigned long long> per_body(parameters.bodies.size(), 0);
       for (const auto &particle : *particle_handler)
@@ -189,6 +183,8 @@ namespace sable::mpm
                     "a body large enough to hold at least one material point "
                     "on this grid");
     }
+
+    allocate_nodal_data();
 
     // the signal speed for the first time step, and an energy scale
     double max_speed = 0, mass_wave_speed2 = 0;
@@ -230,9 +226,24 @@ namespace sable::mpm
           << (parameters.bodies.size() == 1 ? "y" : "ies") << ", "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s), "
           << MultithreadInfo::n_threads() << " thread(s) per rank" << std::endl;
+    if (parallel)
+      print_balance();
     initialized = true;
     if (write && parameters.output_interval > 0)
       write_particles();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::allocate_nodal_data()
+  {
+    const unsigned int n_components = 1 + 2 * dim;
+    nodal_data.reinit(grid.make_partitioner(n_components));
+    if (boundary_conditions.needs_material_extent())
+      material_extent.reinit(grid.make_partitioner(2 * dim));
+    nodal_mass.assign(grid.n_relevant_nodes(), 0.);
+    old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
+    new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
   }
 
   template <int dim>
@@ -759,19 +770,6 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::setup_nodal_vectors()
-  {
-    const unsigned int n_components = 1 + 2 * dim;
-    nodal_data.reinit(grid.make_partitioner(n_components));
-    if (boundary_conditions.needs_material_extent())
-      material_extent.reinit(grid.make_partitioner(2 * dim));
-    nodal_mass.assign(grid.n_relevant_nodes(), 0.);
-    old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
-    new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
-  }
-
-  template <int dim>
-  void
   Simulator<dim>::rebalance()
   {
     particle_handler->prepare_for_coarsening_and_refinement();
@@ -779,10 +777,9 @@ namespace sable::mpm
     particle_handler->unpack_after_coarsening_and_refinement();
     grid.setup();
     boundary_conditions.setup(grid);
-    setup_nodal_vectors();
+    allocate_nodal_data();
     if (use_contact && parallel)
       particle_handler->exchange_ghost_particles(true);
-    print_balance();
   }
 
   template <int dim>

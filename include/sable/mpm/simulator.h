@@ -120,8 +120,7 @@ namespace sable::mpm
      * the particles with their cells, and rebuild what depends on the
      * partition: the grid caches, boundary nodes, nodal vectors and ghost
      * particles. initialize() calls it once after seeding; after a mesh
-     * change, call it instead of repeating those steps. Prints the
-     * particles per rank.
+     * change, call it instead of repeating those steps.
      */
     void
     rebalance();
@@ -153,6 +152,9 @@ namespace sable::mpm
               const std::vector<OwnedCell> &owned_cells,
               const double                  widest_cell,
               types::particle_index &       next_id);
+    /// Size the nodal vectors for the current grid.
+    void
+    allocate_nodal_data();
     /// Find the contact nodes of this step (bodies per node).
     void
     find_contact_nodes();
@@ -177,9 +179,6 @@ namespace sable::mpm
     /// Console line: material points, cells and work per rank (min .. max).
     void
     print_balance() const;
-    /// Nodal vectors sized for the current partition.
-    void
-    setup_nodal_vectors();
     unsigned int
     cell_weight(const typename Triangulation<dim>::cell_iterator &cell,
                 const typename Triangulation<dim>::CellStatus     status) const;
