@@ -16,6 +16,8 @@
 #    threads (qusgm_benchmark threads), bit-identity of the results.
 # Usage: contrib/benchmarks/scaling/run.sh [build dir] [QuSGM grains = 2740]
 #        [QuSGM pack cache = /tmp/qusgm-cache] [repetitions = 3]
+# With QUIET_WAIT=<seconds>, each repetition first waits up to that long for
+# a second of at least 90% idle CPU (other users' jobs) and prints what it saw.
 # Needs the `benchmarks` target built (cmake --build build --target benchmarks).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
@@ -74,6 +76,22 @@ seconds() { grep -o 'in [0-9.e+-]* s wall time' "$1" | awk '{print $2}'; }
 ratio() { python3 -c "print(f'{$1/$2:.2f}')"; }
 minimum() { python3 -c "import sys; print(min(map(float, sys.argv[1:])))" "$@"; }
 load() { cut -d' ' -f1 /proc/loadavg; }
+idle() { # percentage of idle CPU time over the next second, all cores
+  local a b
+  a=($(head -1 /proc/stat)); sleep 1; b=($(head -1 /proc/stat))
+  local total=0 i
+  for i in 1 2 3 4 5 6 7 8; do total=$((total + b[i] - a[i])); done
+  echo $(( 100 * (b[4] - a[4]) / (total > 0 ? total : 1) ))
+}
+wait_quiet() { # on a shared machine: wait up to QUIET_WAIT s (default 0)
+  # for a second with at least 90% idle CPU; print the idle percentage seen
+  local waited=0 i
+  i=$(idle)
+  while [ "$i" -lt 90 ] && [ "$waited" -lt "${QUIET_WAIT:-0}" ]; do
+    sleep 4; waited=$((waited + 5)); i=$(idle)
+  done
+  echo "$i% idle"
+}
 split() { # the TimerOutput rows of a log, as "name time"
   grep -E '^\| (particles to grid|grid to particles|grid update|sort particles)' "$1" |
     awk -F'|' '{gsub(/^ +| +$/, "", $2); gsub(/s$/, "", $4); printf "%s=%s  ", $2, $4}'
@@ -87,7 +105,7 @@ for case in "2 256" "3 32"; do
   scene "$1" "$2" 1 > "$work/s.prm"
   all_a=(); all_b=(); all_c=()
   for r in $(seq "$repeats"); do
-    l=$(load)
+    l="$(load), $(wait_quiet)"
     "$build/sable" --threads 1 "$work/s.prm" > "$work/a.log"
     "${mpirun[@]}" -np 2 "$build/sable" --threads 1 "$work/s.prm" > "$work/b.log"
     "$build/sable" --threads 2 "$work/s.prm" > "$work/c.log"
@@ -105,13 +123,14 @@ done
 
 # load balance: points in one quarter of the grid
 for r in $(seq "$repeats"); do
+  q="$(load), $(wait_quiet)"
   scene 2 256 0.5 true > "$work/s.prm"
   "$build/sable" "$work/s.prm" > "$work/a.log"
   "${mpirun[@]}" -np 2 "$build/sable" "$work/s.prm" > "$work/b.log"
   scene 2 256 0.5 false > "$work/s.prm"
   "${mpirun[@]}" -np 2 "$build/sable" "$work/s.prm" > "$work/c.log"
   a=$(seconds "$work/a.log"); b=$(seconds "$work/b.log"); c=$(seconds "$work/c.log")
-  echo "MPM 2D, points in a quarter, run $r (load $(load)): 1 rank $a s; 2 ranks balanced $b s (x$(ratio "$a" "$b")), unbalanced $c s (x$(ratio "$a" "$c"))"
+  echo "MPM 2D, points in a quarter, run $r (load $q): 1 rank $a s; 2 ranks balanced $b s (x$(ratio "$a" "$b")), unbalanced $c s (x$(ratio "$a" "$c"))"
   [ "$r" = 1 ] && grep 'particles per rank' "$work/b.log" | sed 's/^/  balanced:   /' &&
     grep 'particles per rank' "$work/c.log" | sed 's/^/  unbalanced: /'
 done
@@ -134,5 +153,8 @@ PY
 done
 
 # QuSGM with threads
-"$build/contrib/benchmarks/qusgm_benchmark" threads "$cache" "$grains" 2
+for r in $(seq "$repeats"); do
+  echo "# QuSGM run $r (load $(load), $(wait_quiet))"
+  "$build/contrib/benchmarks/qusgm_benchmark" threads "$cache" "$grains" 2
+done
 echo "# load after: $(cut -d' ' -f1-3 /proc/loadavg)"
