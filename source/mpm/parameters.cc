@@ -278,7 +278,7 @@ namespace sable::mpm
                       Patterns::Bool(),
                       "With two or more MPI ranks: after seeding, repartition "
                       "the grid so that each rank gets about the same work, "
-                      "counting a cell as 1 and a material point as 3 (the "
+                      "counting a cell as 1 and a material point as 6 (the "
                       "costs measured in doc/benchmarks.md), instead of the "
                       "same number of cells. No effect on one rank.");
     prm.leave_subsection();

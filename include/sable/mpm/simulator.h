@@ -132,11 +132,12 @@ namespace sable::mpm
     /**
      * Partition weights (p4est cell weights, integers): a cell costs
      * cell_cost, each material point in it particle_cost more. From the
-     * 2D step time on one core (doc/benchmarks.md): about 0.08 us per
-     * empty cell and 0.25 us per material point, rounded to 100 : 300.
+     * 2D step time on one core (doc/benchmarks.md, eight measurements on
+     * a shared machine: 0.03-0.24 us per cell, 0.24-0.68 us per material
+     * point per step, ratio 1.6-26, median 6.5): 100 : 600.
      */
     static constexpr unsigned int cell_cost     = 100;
-    static constexpr unsigned int particle_cost = 300;
+    static constexpr unsigned int particle_cost = 600;
 
   private:
     using NodalVector = LinearAlgebra::distributed::Vector<double>;
