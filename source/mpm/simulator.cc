@@ -684,6 +684,7 @@ namespace sable::mpm
     // The cells with particles, then a threaded loop over them: each
     // particle's F and stress depend only on its own data and L, so the
     // result does not depend on the number of threads.
+    TimerOutput::Scope scope(timer, "stress update (in grid to particles)");
     std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned() && particle_handler->n_particles_in_cell(cell) > 0)

@@ -93,7 +93,7 @@ wait_quiet() { # on a shared machine: wait up to QUIET_WAIT s (default 0)
   echo "$i% idle"
 }
 split() { # the TimerOutput rows of a log, as "name time"
-  grep -E '^\| (particles to grid|grid to particles|grid update|sort particles)' "$1" |
+  grep -E '^\| (particles to grid|grid to particles|stress update|grid update|sort particles)' "$1" |
     awk -F'|' '{gsub(/^ +| +$/, "", $2); gsub(/s$/, "", $4); printf "%s=%s  ", $2, $4}'
 }
 
