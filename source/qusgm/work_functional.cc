@@ -91,7 +91,7 @@ namespace sable::qusgm
     const std::size_t n_pairs = network.pairs.size();
     const std::size_t n_walls = network.wall_contacts.size();
     const unsigned int n      = pack.size();
-    if (incidence_key == std::array<std::size_t, 4>{network.n_builds, n_pairs, n_walls, n})
+    if (incidence_key == std::array<std::size_t, 4>{{network.n_builds, n_pairs, n_walls, n}})
       return;
     // grain -> its contacts in contact order (pairs, then walls):
     // 2k: grain i of pair k, 2k+1: grain j, 2 n_pairs + k: wall contact k
@@ -114,7 +114,7 @@ namespace sable::qusgm
       }
     for (std::size_t k = 0; k < n_walls; ++k)
       incidence[fill[network.wall_contacts[k].i]++] = 2 * n_pairs + k;
-    incidence_key = {network.n_builds, n_pairs, n_walls, n};
+    incidence_key = {{network.n_builds, n_pairs, n_walls, n}};
   }
 
   template <bool with_gradient>
@@ -420,7 +420,7 @@ namespace sable::qusgm
             }
         };
         if (state == nullptr)
-          dealii::parallel::apply_to_subranges(0u, n, gather, 256);
+          dealii::parallel::apply_to_subranges(0u, n, gather, 64);
         else
           gather(0, n);
         last_max_contact_force = max_p;

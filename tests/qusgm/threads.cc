@@ -59,7 +59,7 @@ main()
   network.update_reference(pack, walls, model);
   std::cout << pack.size() << " grains, " << network.pairs.size() << " pairs, "
             << network.wall_contacts.size() << " wall contacts" << std::endl;
-  check("many chunks of contacts", network.pairs.size() > 10 * 256);
+  check("many chunks of contacts (128 per chunk)", network.pairs.size() > 10 * 128);
 
   const unsigned int n = pack.size();
   Vector<double>     theta(6 * n);

@@ -119,7 +119,7 @@ namespace sable::qusgm
 
     /// Contacts per chunk of the threaded loop; fixed, so that the sums do
     /// not depend on the number of threads.
-    static constexpr std::size_t chunk_size = 256;
+    static constexpr std::size_t chunk_size = 128;
     struct ChunkSums
     {
       double pi = 0, sum_p = 0, max_p = 0, max_dp = 0;
