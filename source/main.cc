@@ -9,6 +9,7 @@
 #include <sable/mpm/run_scene.h>
 #include <sable/qusgm/run_scene.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <string>
 
@@ -17,7 +18,7 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: sable <scene.prm> [--resume]\n"
+    out << "Usage: sable [--threads N] <scene.prm> [--resume]\n"
            "       sable --print-parameters [mpm|qusgm] [2|3]\n"
            "       sable --help\n\n"
            "Runs the granular-mechanics scene described by the parameter file.\n"
@@ -29,7 +30,10 @@ namespace
            "--resume (MPM) continues the run from the last checkpoint in\n"
            "its output directory (written with 'Output/Checkpoint interval'\n"
            "> 0), to the End time and step limit the file gives now;\n"
-           "statistics.csv is continued as if the run had not stopped.\n";
+           "statistics.csv is continued as if the run had not stopped.\n"
+           "--threads N runs N threads per MPI rank (0: one per core);\n"
+           "it overrides the environment variable SABLE_THREADS and the\n"
+           "scene's 'set Threads' (default 1).\n";
   }
 
   void
@@ -50,11 +54,58 @@ namespace
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // no thread limit here: set_threads() below sets it (default one)
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
+  sable::set_threads(1);
   const bool root =
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
+      // --threads N (or --threads=N) anywhere; taken out of argv
+      std::string threads_option;
+      if (const char *environment = std::getenv("SABLE_THREADS"))
+        threads_option = environment;
+      for (int i = 1; i < argc; ++i)
+        {
+          const std::string argument = argv[i];
+          int               taken    = 0;
+          if (argument == "--threads")
+            {
+              sable::check_input(i + 1 < argc, "--threads", "(missing)",
+                                 "an integer >= 0 (0: one thread per core)");
+              threads_option = argv[i + 1];
+              taken          = 2;
+            }
+          else if (argument.rfind("--threads=", 0) == 0)
+            {
+              threads_option = argument.substr(10);
+              taken          = 1;
+            }
+          if (taken > 0)
+            {
+              for (int j = i; j + taken < argc; ++j)
+                argv[j] = argv[j + taken];
+              argc -= taken;
+              --i;
+            }
+        }
+      int threads = -1;
+      if (!threads_option.empty())
+        {
+          std::size_t end = 0;
+          try
+            {
+              threads = std::stoi(threads_option, &end);
+            }
+          catch (const std::exception &)
+            {
+              end = 0;
+            }
+          sable::check_input(end == threads_option.size() && threads >= 0,
+                             "--threads (or SABLE_THREADS)", threads_option,
+                             "an integer >= 0 (0: one thread per core)");
+        }
+
       if (argc < 2)
         {
           if (root)
@@ -89,6 +140,7 @@ main(int argc, char **argv)
 
       const sable::CommonParameters common =
         sable::read_common_parameters(first);
+      sable::set_threads(threads >= 0 ? threads : common.threads);
       if (common.model == sable::Model::qusgm)
         {
           if (resume)

@@ -273,6 +273,14 @@ namespace sable::mpm
                       Patterns::Double(),
                       "Blend of PIC into the FLIP velocity update, in [0, 1] "
                       "(0: pure FLIP, 1: pure PIC).");
+    prm.declare_entry("Balance particles across ranks",
+                      "true",
+                      Patterns::Bool(),
+                      "With two or more MPI ranks: after seeding, repartition "
+                      "the grid so that each rank gets about the same work, "
+                      "counting a cell as 1 and a material point as 6 (the "
+                      "costs measured in doc/benchmarks.md), instead of the "
+                      "same number of cells. No effect on one rank.");
     prm.leave_subsection();
 
     prm.enter_subsection("Grid");
@@ -652,6 +660,7 @@ namespace sable::mpm
     prm.enter_subsection("Solver");
     p.update_scheme = prm.get("Update scheme") == "MUSL" ? UpdateScheme::musl : UpdateScheme::usl;
     p.pic_fraction  = prm.get_double("PIC fraction");
+    p.balance_particles = prm.get_bool("Balance particles across ranks");
     prm.leave_subsection();
 
     GridParameters<dim> &grid = scene.grid;

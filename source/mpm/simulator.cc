@@ -1,5 +1,7 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/parallel.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/particles/data_out.h>
@@ -13,6 +15,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 namespace sable::mpm
@@ -63,7 +66,10 @@ namespace sable::mpm
   {}
 
   template <int dim>
-  Simulator<dim>::~Simulator() = default;
+  Simulator<dim>::~Simulator()
+  {
+    weight_connection.disconnect();
+  }
 
   template <int dim>
   void
@@ -203,7 +209,16 @@ namespace sable::mpm
         particle.set_id(particle.get_id() + offset);
     }
     particle_handler->update_cached_numbers();
-    if (use_contact && parallel)
+    if (parallel && parameters.balance_particles)
+      {
+        weight_connection = triangulation.signals.weight.connect(
+          [this](const typename Triangulation<dim>::cell_iterator &cell,
+                 const typename Triangulation<dim>::CellStatus     status) {
+            return cell_weight(cell, status);
+          });
+        rebalance();
+      }
+    else if (use_contact && parallel)
       particle_handler->exchange_ghost_particles(true);
     {
       std::vector<unsigned long long> per_body(parameters.bodies.size(), 0);
@@ -253,11 +268,24 @@ namespace sable::mpm
     pcout << ", " << particle_handler->n_global_particles()
           << " material points in " << parameters.bodies.size() << " bod"
           << (parameters.bodies.size() == 1 ? "y" : "ies") << ", "
-          << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s)"
-          << std::endl;
+          << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s), "
+          << MultithreadInfo::n_threads() << " thread(s) per rank" << std::endl;
+    if (parallel)
+      print_balance();
     initialized = true;
     if (!parameters.output_directory.empty() && parameters.output_interval > 0)
       write_particles();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::setup_after_mesh_change()
+  {
+    grid.setup();
+    boundary_conditions.setup(grid);
+    allocate_nodal_data();
+    if (use_contact && parallel)
+      particle_handler->exchange_ghost_particles(true);
   }
 
   template <int dim>
@@ -305,11 +333,7 @@ namespace sable::mpm
     particle_handler->update_cached_numbers();
     AssertThrow(particle_handler->n_global_particles() == before,
                 ExcMessage("Material points were lost in a mesh adaptation."));
-    grid.setup();
-    boundary_conditions.setup(grid);
-    allocate_nodal_data();
-    if (use_contact && parallel)
-      particle_handler->exchange_ghost_particles(true);
+    setup_after_mesh_change();
   }
 
   template <int dim>
@@ -659,6 +683,8 @@ namespace sable::mpm
     bool         failed = false, too_far = false;
     Point<dim>   failure_location;
     typename Grid<dim>::Shape shape;
+    if (update_stresses)
+      velocity_gradients.resize(particle_handler->get_max_local_particle_index());
     for (const auto &cell : triangulation.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -728,33 +754,11 @@ namespace sable::mpm
                   }
               }
             if (update_stresses)
-              {
-                Tensor<2, dim> F = ParticleLayout<dim>::deformation_gradient(props);
-                Tensor<2, dim> identity;
-                for (unsigned int d = 0; d < dim; ++d)
-                  identity[d][d] = 1.;
-                F = (identity + time_step * L) * F;
-                for (unsigned int i = 0; i < dim; ++i)
-                  for (unsigned int j = 0; j < dim; ++j)
-                    props[layout.deformation + i * dim + j] = F[i][j];
-                SymmetricTensor<2, 3> stress = ParticleLayout<dim>::stress_tensor(props);
-                materials[body]->update_stress(embed<dim>(L, 0.),
-                                               embed<dim>(F, 1.),
-                                               time_step,
-                                               stress,
-                                               layout.n_history > 0 ? &props[layout.history] : nullptr);
-                for (unsigned int c = 0; c < 6; ++c)
-                  {
-                    props[layout.stress + c] = stress.access_raw_entry(c);
-                    if (!std::isfinite(stress.access_raw_entry(c)))
-                      {
-                        failed           = true;
-                        failure_location = particle.get_location();
-                      }
-                  }
-              }
+              velocity_gradients[particle.get_local_index()] = L;
           }
       }
+    if (update_stresses)
+      update_particle_stresses();
     if (update_positions)
       {
         if (mesh_refinement)
@@ -772,6 +776,136 @@ namespace sable::mpm
     report_failure(too_far, failure_location,
                    "a material point moved more than one cell in one step "
                    "(reduce 'Time/CFL number')");
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::update_particle_stresses()
+  {
+    // The cells with particles, then a threaded loop over them: each
+    // particle's F and stress depend only on its own data and L, so the
+    // result does not depend on the number of threads.
+    TimerOutput::Scope scope(timer, "stress update (in grid to particles)");
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && particle_handler->n_particles_in_cell(cell) > 0)
+        cells.push_back(cell);
+    std::mutex            failure_mutex;
+    types::particle_index failed_id = numbers::invalid_unsigned_int;
+    Point<dim>            failure_location;
+    bool                  failed = false;
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(cells.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        Tensor<2, dim> identity;
+        for (unsigned int d = 0; d < dim; ++d)
+          identity[d][d] = 1.;
+        for (unsigned int c = begin; c < end; ++c)
+          for (auto &particle : particle_handler->particles_in_cell(cells[c]))
+            {
+              const auto           props = particle.get_properties();
+              const unsigned int   body  = static_cast<unsigned int>(props[layout.body]);
+              const Tensor<2, dim> L     = velocity_gradients[particle.get_local_index()];
+              Tensor<2, dim>       F     = ParticleLayout<dim>::deformation_gradient(props);
+              F                          = (identity + time_step * L) * F;
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  props[layout.deformation + i * dim + j] = F[i][j];
+              SymmetricTensor<2, 3> stress = ParticleLayout<dim>::stress_tensor(props);
+              materials[body]->update_stress(embed<dim>(L, 0.),
+                                             embed<dim>(F, 1.),
+                                             time_step,
+                                             stress,
+                                             layout.n_history > 0 ? &props[layout.history] :
+                                                                    nullptr);
+              bool finite = true;
+              for (unsigned int c = 0; c < 6; ++c)
+                {
+                  props[layout.stress + c] = stress.access_raw_entry(c);
+                  finite = finite && std::isfinite(stress.access_raw_entry(c));
+                }
+              if (!finite)
+                {
+                  // report the failing particle with the lowest id, whatever
+                  // the threads' order
+                  std::lock_guard<std::mutex> lock(failure_mutex);
+                  if (!failed || particle.get_id() < failed_id)
+                    {
+                      failed           = true;
+                      failed_id        = particle.get_id();
+                      failure_location = particle.get_location();
+                    }
+                }
+            }
+      },
+      16);
+    report_failure(failed, failure_location,
+                   "a velocity or stress is not a finite number (NaN or infinity)");
+  }
+
+  template <int dim>
+  unsigned int
+  Simulator<dim>::cell_weight(const typename Triangulation<dim>::cell_iterator &cell,
+                              const typename Triangulation<dim>::CellStatus     status) const
+  {
+    unsigned int n_particles = 0;
+    switch (status)
+      {
+        case Triangulation<dim>::CELL_PERSIST:
+          n_particles = particle_handler->n_particles_in_cell(cell);
+          break;
+        case Triangulation<dim>::CELL_REFINE:
+          // called for each future child with the parent: an equal share
+          n_particles = particle_handler->n_particles_in_cell(cell) /
+                        GeometryInfo<dim>::max_children_per_cell;
+          break;
+        case Triangulation<dim>::CELL_COARSEN:
+          for (const auto &child : cell->child_iterators())
+            n_particles += particle_handler->n_particles_in_cell(child);
+          break;
+        default:
+          Assert(false, ExcInternalError());
+      }
+    return cell_cost + particle_cost * n_particles;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::rebalance()
+  {
+    particle_handler->prepare_for_coarsening_and_refinement();
+    triangulation.repartition();
+    particle_handler->unpack_after_coarsening_and_refinement();
+    setup_after_mesh_change();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::print_balance() const
+  {
+    const auto [fewest, most] = particles_per_rank();
+    const unsigned long long cells     = triangulation.n_locally_owned_active_cells();
+    const unsigned long long particles = particle_handler->n_locally_owned_particles();
+    const unsigned long long work      = cell_cost * cells + particle_cost * particles;
+    const unsigned long long ghost_nodes =
+      grid.n_relevant_nodes() - nodal_data.get_partitioner()->locally_owned_size() / (1 + 2 * dim);
+    pcout << "particles per rank: " << fewest << " .. " << most
+          << "; cells per rank: " << Utilities::MPI::min(cells, communicator) << " .. "
+          << Utilities::MPI::max(cells, communicator) << "; ghost nodes per rank: "
+          << Utilities::MPI::min(ghost_nodes, communicator) << " .. "
+          << Utilities::MPI::max(ghost_nodes, communicator) << "; work per rank (" << cell_cost
+          << " per cell + " << particle_cost << " per material point): "
+          << Utilities::MPI::min(work, communicator) << " .. "
+          << Utilities::MPI::max(work, communicator) << std::endl;
+  }
+
+  template <int dim>
+  std::pair<unsigned long long, unsigned long long>
+  Simulator<dim>::particles_per_rank() const
+  {
+    const unsigned long long local = particle_handler->n_locally_owned_particles();
+    return {Utilities::MPI::min(local, communicator), Utilities::MPI::max(local, communicator)};
   }
 
   template <int dim>

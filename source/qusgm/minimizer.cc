@@ -1,3 +1,5 @@
+#include <deal.II/base/parallel.h>
+
 #include <sable/qusgm/minimizer.h>
 
 #include <boost/math/tools/minima.hpp>
@@ -10,6 +12,40 @@
 
 namespace sable::qusgm
 {
+  namespace
+  {
+    /**
+     * Scalar product in fixed blocks of 4096 entries, threaded over the
+     * blocks and summed in block order, so the result does not depend on
+     * the number of threads (deal.II's Vector reductions split by it).
+     */
+    double
+    dot(const Vector<double> &a, const Vector<double> &b)
+    {
+      constexpr std::size_t block    = 4096;
+      const std::size_t     n        = a.size();
+      const std::size_t     n_blocks = (n + block - 1) / block;
+      std::vector<double>   partial(n_blocks, 0.);
+      const auto            sum_blocks = [&](const std::size_t begin, const std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+          {
+            double sum = 0;
+            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
+              sum += a[i] * b[i];
+            partial[k] = sum;
+          }
+      };
+      if (n_blocks > 1)
+        dealii::parallel::apply_to_subranges(std::size_t(0), n_blocks, sum_blocks, 1);
+      else
+        sum_blocks(0, n_blocks);
+      double sum = 0;
+      for (const double p : partial)
+        sum += p;
+      return sum;
+    }
+  } // namespace
+
   IncrementSolver::IncrementSolver(Pack                    &pack,
                                    Walls                   &reference_walls,
                                    ContactNetwork          &network,
@@ -156,7 +192,7 @@ namespace sable::qusgm
           }
         ++since_sub_increment;
 
-        const double g2       = gradient.norm_sqr();
+        const double g2       = dot(gradient, gradient);
         const double residual = WorkFunctional::max_residual(gradient);
         if (log)
           {
@@ -214,7 +250,7 @@ namespace sable::qusgm
               direction.equ(-1., gradient);
             else
               {
-                const double beta = g2 / previous_gradient.norm_sqr();
+                const double beta = g2 / dot(previous_gradient, previous_gradient);
                 direction *= beta;
                 direction.add(-1., gradient);
               }
@@ -227,22 +263,22 @@ namespace sable::qusgm
             for (int m = int(memory.size()) - 1; m >= 0; --m)
               {
                 const auto &[s, y] = memory[m];
-                alpha[m]           = (s * direction) / (s * y);
+                alpha[m]           = dot(s, direction) / dot(s, y);
                 direction.add(-alpha[m], y);
               }
             if (!memory.empty())
               {
                 const auto &[s, y] = memory.back();
-                direction *= (s * y) / y.norm_sqr();
+                direction *= dot(s, y) / dot(y, y);
               }
             for (unsigned int m = 0; m < memory.size(); ++m)
               {
                 const auto  &[s, y] = memory[m];
-                const double b      = (y * direction) / (s * y);
+                const double b      = dot(y, direction) / dot(s, y);
                 direction.add(alpha[m] - b, s);
               }
           }
-        double slope = direction * gradient;
+        double slope = dot(direction, gradient);
         if (!(slope < 0))
           {
             direction.equ(-1., gradient);
@@ -277,7 +313,7 @@ namespace sable::qusgm
                   trial = theta;
                   trial.add(a, direction);
                   functional.value_and_gradient(trial, trial_gradient);
-                  return trial_gradient * direction;
+                  return dot(trial_gradient, direction);
                 };
                 double a_lo = 0, d_lo = slope, a_hi = alpha_max,
                        d_hi = dphi(alpha_max);
@@ -337,7 +373,7 @@ namespace sable::qusgm
                     best_value = f;
                     best_alpha = a;
                   }
-                const double d = trial_gradient * direction;
+                const double d = dot(trial_gradient, direction);
                 // Hager-Zhang's approximate Armijo condition takes over
                 // where Pi is flat to round-off.
                 const bool decrease =
@@ -366,7 +402,7 @@ namespace sable::qusgm
                 s *= alpha;
                 Vector<double> y(trial_gradient);
                 y -= gradient;
-                if (s * y > 1e-12 * s.l2_norm() * y.l2_norm())
+                if (dot(s, y) > 1e-12 * std::sqrt(dot(s, s) * dot(y, y)))
                   {
                     memory.emplace_back(std::move(s), std::move(y));
                     if (memory.size() > settings.lbfgs_history)
@@ -405,7 +441,7 @@ namespace sable::qusgm
 
     last_state               = functional.state(theta);
     result.value             = value;
-    result.gradient_norm     = gradient.l2_norm();
+    result.gradient_norm     = std::sqrt(dot(gradient, gradient));
     result.residual          = last_state.max_residual;
     result.max_contact_force = last_state.max_contact_force;
     result.evaluations       = functional.n_evaluations - evaluations_before;

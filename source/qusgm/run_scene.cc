@@ -4,6 +4,7 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
 
 #include <sable/base/input_error.h>
@@ -424,7 +425,7 @@ namespace sable::qusgm
     out << "QuSGM scene " << filename << ": " << pack.size() << " grains, mu = "
         << model.friction << " (walls " << model.wall_friction << "), torsion "
         << (model.torsion ? "on" : "off") << ", minimiser " << method_name
-        << std::endl;
+        << ", " << dealii::MultithreadInfo::n_threads() << " thread(s)" << std::endl;
     std::ofstream log_file;
     if (iteration_log)
       log_file.open(output + "/iterations.log");

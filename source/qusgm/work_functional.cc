@@ -1,3 +1,5 @@
+#include <deal.II/base/parallel.h>
+
 #include <sable/qusgm/contact_laws.h>
 #include <sable/qusgm/work_functional.h>
 
@@ -83,6 +85,38 @@ namespace sable::qusgm
     return std::sqrt(r);
   }
 
+  void
+  WorkFunctional::update_incidence() const
+  {
+    const std::size_t n_pairs = network.pairs.size();
+    const std::size_t n_walls = network.wall_contacts.size();
+    const unsigned int n      = pack.size();
+    if (incidence_key == std::array<std::size_t, 4>{{network.n_builds, n_pairs, n_walls, n}})
+      return;
+    // grain -> its contacts in contact order (pairs, then walls):
+    // 2k: grain i of pair k, 2k+1: grain j, 2 n_pairs + k: wall contact k
+    incidence_start.assign(n + 1, 0);
+    for (const Contact &c : network.pairs)
+      {
+        ++incidence_start[c.i + 1];
+        ++incidence_start[c.other + 1];
+      }
+    for (const Contact &c : network.wall_contacts)
+      ++incidence_start[c.i + 1];
+    for (unsigned int i = 0; i < n; ++i)
+      incidence_start[i + 1] += incidence_start[i];
+    incidence.resize(incidence_start[n]);
+    std::vector<unsigned int> fill(incidence_start.begin(), incidence_start.end() - 1);
+    for (std::size_t k = 0; k < n_pairs; ++k)
+      {
+        incidence[fill[network.pairs[k].i]++]     = 2 * k;
+        incidence[fill[network.pairs[k].other]++] = 2 * k + 1;
+      }
+    for (std::size_t k = 0; k < n_walls; ++k)
+      incidence[fill[network.wall_contacts[k].i]++] = 2 * n_pairs + k;
+    incidence_key = {{network.n_builds, n_pairs, n_walls, n}};
+  }
+
   template <bool with_gradient>
   double
   WorkFunctional::evaluate(const Vector<double>      &theta,
@@ -96,211 +130,304 @@ namespace sable::qusgm
     const unsigned int rot      = 3 * n;
     const bool         friction = model.frictional();
     const bool         torsion  = friction && model.torsion;
-    if (with_gradient)
-      *gradient = 0.;
     if (state)
       state->coordination.assign(n, 0);
-    double pi      = 0;
-    double sum_p   = 0;
-    double max_p   = 0;
-    double max_dp  = 0;
 
-    // Grain-grain contacts.
-    for (std::size_t k = 0; k < network.pairs.size(); ++k)
+    // Contacts in fixed chunks of chunk_size: each chunk sums its share of
+    // Pi in contact order, each contact stores its gradient contributions,
+    // and the grains gather them in a fixed order. The result is the same
+    // for any number of threads (bit for bit). With a ContactState the
+    // chunks run one after the other (the counts are shared).
+    const std::size_t n_pairs       = network.pairs.size();
+    const std::size_t n_walls       = network.wall_contacts.size();
+    const std::size_t n_pair_chunks = (n_pairs + chunk_size - 1) / chunk_size;
+    const std::size_t n_wall_chunks = (n_walls + chunk_size - 1) / chunk_size;
+    chunk_sums.assign(n_pair_chunks + n_wall_chunks, ChunkSums());
+    if (with_gradient)
       {
-        const Contact     &c = network.pairs[k];
-        const unsigned int i = c.i, j = c.other;
-        const Tensor<1, 3> u_i = block(theta, 3 * i), u_j = block(theta, 3 * j);
-        const Tensor<1, 3> r =
-          (pack.centre[i] + u_i) - (pack.centre[j] + u_j);
-        const double d = r.norm();
-        const double h = pack.radius[i] + pack.radius[j] - d;
-        const double h0 = c.h0;
-        pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, h0);
-        const Tensor<1, 3> n_ij = r / d;
-        Tensor<1, 3>       force_i; // force on i, except the normal part
-        Tensor<1, 3>       g;       // dW/dn at fixed u, Omega
-        Tensor<1, 3>       moment_i, moment_j;
-        if (h > 0)
-          {
-            const double p = hertz_force(c.k_n, h);
-            if (with_gradient)
-              {
-                add_block(*gradient, 3 * i, n_ij, -p);
-                add_block(*gradient, 3 * j, n_ij, p);
-                max_p  = std::max(max_p, p);
-                max_dp = std::max(max_dp, std::abs(p - c.p0));
-              }
-            if (state)
-              {
-                ++state->n_contacts;
-                ++state->n_grain_contacts;
-                ++state->coordination[i];
-                ++state->coordination[j];
-                state->max_contact_force = std::max(state->max_contact_force, p);
-                sum_p += p;
-              }
-          }
-        if (!friction || c.p0 <= 0 || c.k_s <= 0)
-          continue;
-
-        const Tensor<1, 3> omega_i = block(theta, rot + 3 * i) / pack.radius[i];
-        const Tensor<1, 3> omega_j = block(theta, rot + 3 * j) / pack.radius[j];
-        const Tensor<1, 3> du      = u_i - u_j;
-        const Tensor<1, 3> lever_omega = c.lever_i * omega_i + c.lever_j * omega_j;
-        const double       du_n        = n_ij * du;
-        // u_s = T du + Omega_i x R_ij - Omega_j x R_ji with R_ij = -lever_i n,
-        // R_ji = lever_j n.
-        const Tensor<1, 3> u_s =
-          du - du_n * n_ij - dealii::cross_product_3d(lever_omega, n_ij);
-
-        // Reference load rotated onto the current contact plane.
-        const double       q0_norm = c.q0.norm();
-        const double       q0_n    = c.q0 * n_ij;
-        const Tensor<1, 3> v       = c.q0 - q0_n * n_ij;
-        const double       v_norm  = v.norm();
-        const Tensor<1, 3> q_p =
-          v_norm > 0 ? (q0_norm / v_norm) * v : Tensor<1, 3>();
-
-        const Tensor<1, 3> y = q_p - c.k_s * u_s;
-        const Tensor<1, 3> q = capped_force(y, c.q_max);
-        pi -= (capped_potential(q_p, c.q_max) - capped_potential(y, c.q_max)) /
-              c.k_s;
-        if (state && h > 0 && y.norm() > c.q_max)
-          ++state->n_sliding;
-        if (q_out)
-          (*q_out)[k] = q;
-        if (with_gradient)
-          {
-            force_i = q;
-            g       = -du_n * q - dealii::cross_product_3d(q, lever_omega);
-            if (v_norm > 0)
-              {
-                const Tensor<1, 3> dq   = (q_p - q) / c.k_s;
-                const Tensor<1, 3> v_hat = v / v_norm;
-                const Tensor<1, 3> e =
-                  (q0_norm / v_norm) * (dq - (v_hat * dq) * v_hat);
-                g += -q0_n * e - (e * n_ij) * c.q0;
-              }
-            const Tensor<1, 3> n_cross_q = dealii::cross_product_3d(n_ij, q);
-            moment_i = -c.lever_i * n_cross_q;
-            moment_j = -c.lever_j * n_cross_q;
-          }
-
-        if (torsion && c.k_t > 0)
-          {
-            const Tensor<1, 3> d_omega = omega_i - omega_j;
-            const double       omega_t = d_omega * n_ij;
-            const double       y_t     = c.m0 - c.k_t * omega_t;
-            const double       m       = capped_force(y_t, c.m_max);
-            pi -= (capped_potential(c.m0, c.m_max) -
-                   capped_potential(y_t, c.m_max)) /
-                  c.k_t;
-            if (m_out)
-              (*m_out)[k] = m;
-            if (with_gradient)
-              {
-                moment_i += m * n_ij;
-                moment_j -= m * n_ij;
-                g += m * d_omega;
-              }
-          }
-        if (with_gradient)
-          {
-            // Chain rule through n = r/|r|: dn/dr = (I - n n)/d.
-            force_i += (g - (g * n_ij) * n_ij) / d;
-            add_block(*gradient, 3 * i, force_i, -1.);
-            add_block(*gradient, 3 * j, force_i, 1.);
-            add_block(*gradient, rot + 3 * i, moment_i, -1. / pack.radius[i]);
-            add_block(*gradient, rot + 3 * j, moment_j, -1. / pack.radius[j]);
-          }
+        pair_results.resize(n_pairs);
+        wall_results.resize(n_walls);
       }
+
+    // Grain-grain contacts k in [begin, end).
+    const auto pair_chunk = [&](const std::size_t begin,
+                                const std::size_t end,
+                                ChunkSums        &sums) {
+      for (std::size_t k = begin; k < end; ++k)
+        {
+          const Contact     &c = network.pairs[k];
+          const unsigned int i = c.i, j = c.other;
+          const Tensor<1, 3> u_i = block(theta, 3 * i), u_j = block(theta, 3 * j);
+          const Tensor<1, 3> r =
+            (pack.centre[i] + u_i) - (pack.centre[j] + u_j);
+          const double d  = r.norm();
+          const double h  = pack.radius[i] + pack.radius[j] - d;
+          const double h0 = c.h0;
+          sums.pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, h0);
+          const Tensor<1, 3> n_ij = r / d;
+          Tensor<1, 3>       force_i; // force on i
+          Tensor<1, 3>       g;       // dW/dn at fixed u, Omega
+          Tensor<1, 3>       moment_i, moment_j;
+          if (h > 0)
+            {
+              const double p = hertz_force(c.k_n, h);
+              if (with_gradient)
+                {
+                  force_i    = p * n_ij;
+                  sums.max_p  = std::max(sums.max_p, p);
+                  sums.max_dp = std::max(sums.max_dp, std::abs(p - c.p0));
+                }
+              if (state)
+                {
+                  ++state->n_contacts;
+                  ++state->n_grain_contacts;
+                  ++state->coordination[i];
+                  ++state->coordination[j];
+                  state->max_contact_force = std::max(state->max_contact_force, p);
+                  sums.sum_p += p;
+                }
+            }
+          if (friction && c.p0 > 0 && c.k_s > 0)
+            {
+              const Tensor<1, 3> omega_i = block(theta, rot + 3 * i) / pack.radius[i];
+              const Tensor<1, 3> omega_j = block(theta, rot + 3 * j) / pack.radius[j];
+              const Tensor<1, 3> du      = u_i - u_j;
+              const Tensor<1, 3> lever_omega = c.lever_i * omega_i + c.lever_j * omega_j;
+              const double       du_n        = n_ij * du;
+              // u_s = T du + Omega_i x R_ij - Omega_j x R_ji with R_ij = -lever_i n,
+              // R_ji = lever_j n.
+              const Tensor<1, 3> u_s =
+                du - du_n * n_ij - dealii::cross_product_3d(lever_omega, n_ij);
+
+              // Reference load rotated onto the current contact plane.
+              const double       q0_norm = c.q0.norm();
+              const double       q0_n    = c.q0 * n_ij;
+              const Tensor<1, 3> v       = c.q0 - q0_n * n_ij;
+              const double       v_norm  = v.norm();
+              const Tensor<1, 3> q_p =
+                v_norm > 0 ? (q0_norm / v_norm) * v : Tensor<1, 3>();
+
+              const Tensor<1, 3> y = q_p - c.k_s * u_s;
+              const Tensor<1, 3> q = capped_force(y, c.q_max);
+              sums.pi -= (capped_potential(q_p, c.q_max) - capped_potential(y, c.q_max)) /
+                         c.k_s;
+              if (state && h > 0 && y.norm() > c.q_max)
+                ++state->n_sliding;
+              if (q_out)
+                (*q_out)[k] = q;
+              Tensor<1, 3> force_t; // tangential force on i with the chain rule
+              if (with_gradient)
+                {
+                  force_t = q;
+                  g       = -du_n * q - dealii::cross_product_3d(q, lever_omega);
+                  if (v_norm > 0)
+                    {
+                      const Tensor<1, 3> dq    = (q_p - q) / c.k_s;
+                      const Tensor<1, 3> v_hat = v / v_norm;
+                      const Tensor<1, 3> e =
+                        (q0_norm / v_norm) * (dq - (v_hat * dq) * v_hat);
+                      g += -q0_n * e - (e * n_ij) * c.q0;
+                    }
+                  const Tensor<1, 3> n_cross_q = dealii::cross_product_3d(n_ij, q);
+                  moment_i = -c.lever_i * n_cross_q;
+                  moment_j = -c.lever_j * n_cross_q;
+                }
+
+              if (torsion && c.k_t > 0)
+                {
+                  const Tensor<1, 3> d_omega = omega_i - omega_j;
+                  const double       omega_t = d_omega * n_ij;
+                  const double       y_t     = c.m0 - c.k_t * omega_t;
+                  const double       m       = capped_force(y_t, c.m_max);
+                  sums.pi -= (capped_potential(c.m0, c.m_max) -
+                              capped_potential(y_t, c.m_max)) /
+                             c.k_t;
+                  if (m_out)
+                    (*m_out)[k] = m;
+                  if (with_gradient)
+                    {
+                      moment_i += m * n_ij;
+                      moment_j -= m * n_ij;
+                      g += m * d_omega;
+                    }
+                }
+              if (with_gradient)
+                {
+                  // Chain rule through n = r/|r|: dn/dr = (I - n n)/d.
+                  force_t += (g - (g * n_ij) * n_ij) / d;
+                  force_i += force_t;
+                }
+            }
+          if (with_gradient)
+            {
+              PairResult &result = pair_results[k];
+              result.force       = force_i;
+              result.rotation_i  = (-1. / pack.radius[i]) * moment_i;
+              result.rotation_j  = (-1. / pack.radius[j]) * moment_j;
+            }
+        }
+    };
 
     // Grain-wall contacts: the wall normal is fixed and walls move only
     // along it, so the tangential displacement is linear in theta.
-    const std::size_t n_pairs = network.pairs.size();
-    for (std::size_t k = 0; k < network.wall_contacts.size(); ++k)
+    const auto wall_chunk = [&](const std::size_t begin,
+                                const std::size_t end,
+                                ChunkSums        &sums) {
+      for (std::size_t k = begin; k < end; ++k)
+        {
+          const Contact     &c   = network.wall_contacts[k];
+          const unsigned int i   = c.i, w = c.other;
+          const unsigned int ax  = Walls::axis(w);
+          const double       sgn = Walls::sign(w);
+          const Tensor<1, 3> u_i = block(theta, 3 * i);
+          const double       h =
+            walls.overlap(w, pack.centre[i] + u_i, pack.radius[i]);
+          sums.pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, c.h0);
+          Tensor<1, 3> gradient_i, moment_i;
+          if (h > 0)
+            {
+              const double p = hertz_force(c.k_n, h);
+              if (with_gradient)
+                {
+                  gradient_i[ax] -= sgn * p;
+                  sums.max_p  = std::max(sums.max_p, p);
+                  sums.max_dp = std::max(sums.max_dp, std::abs(p - c.p0));
+                }
+              if (state)
+                {
+                  ++state->n_contacts;
+                  ++state->coordination[i];
+                  state->wall_force[w] += p;
+                  state->max_contact_force = std::max(state->max_contact_force, p);
+                  sums.sum_p += p;
+                }
+            }
+          if (friction && c.p0 > 0 && c.k_s > 0)
+            {
+              Tensor<1, 3> n_w;
+              n_w[ax]                    = sgn;
+              const Tensor<1, 3> omega_i = block(theta, rot + 3 * i) / pack.radius[i];
+              Tensor<1, 3>       u_s     = u_i - (u_i * n_w) * n_w -
+                                 c.lever_i * dealii::cross_product_3d(omega_i, n_w);
+              const Tensor<1, 3> y = c.q0 - c.k_s * u_s;
+              const Tensor<1, 3> q = capped_force(y, c.q_max);
+              sums.pi -= (capped_potential(c.q0, c.q_max) - capped_potential(y, c.q_max)) /
+                         c.k_s;
+              if (state && h > 0 && y.norm() > c.q_max)
+                ++state->n_sliding;
+              if (q_out)
+                (*q_out)[n_pairs + k] = q;
+              if (with_gradient)
+                {
+                  gradient_i -= q;
+                  moment_i = -c.lever_i * dealii::cross_product_3d(n_w, q);
+                }
+              if (torsion && c.k_t > 0)
+                {
+                  const double omega_t = omega_i * n_w;
+                  const double y_t     = c.m0 - c.k_t * omega_t;
+                  const double m       = capped_force(y_t, c.m_max);
+                  sums.pi -= (capped_potential(c.m0, c.m_max) -
+                              capped_potential(y_t, c.m_max)) /
+                             c.k_t;
+                  if (m_out)
+                    (*m_out)[n_pairs + k] = m;
+                  if (with_gradient)
+                    moment_i += m * n_w;
+                }
+            }
+          if (with_gradient)
+            {
+              wall_results[k].gradient = gradient_i;
+              wall_results[k].rotation = (-1. / pack.radius[i]) * moment_i;
+            }
+        }
+    };
+
+    const auto run_chunks = [&](const std::size_t begin, const std::size_t end) {
+      for (std::size_t chunk = begin; chunk < end; ++chunk)
+        if (chunk < n_pair_chunks)
+          pair_chunk(chunk * chunk_size,
+                     std::min((chunk + 1) * chunk_size, n_pairs),
+                     chunk_sums[chunk]);
+        else
+          {
+            const std::size_t w = chunk - n_pair_chunks;
+            wall_chunk(w * chunk_size,
+                       std::min((w + 1) * chunk_size, n_walls),
+                       chunk_sums[chunk]);
+          }
+    };
+    if (state == nullptr)
+      dealii::parallel::apply_to_subranges(std::size_t(0), chunk_sums.size(), run_chunks, 1);
+    else
+      run_chunks(0, chunk_sums.size());
+
+    double pi = 0, sum_p = 0, max_p = 0, max_dp = 0;
+    for (const ChunkSums &sums : chunk_sums)
       {
-        const Contact     &c   = network.wall_contacts[k];
-        const unsigned int i   = c.i, w = c.other;
-        const unsigned int ax  = Walls::axis(w);
-        const double       sgn = Walls::sign(w);
-        const Tensor<1, 3> u_i = block(theta, 3 * i);
-        const double       h =
-          walls.overlap(w, pack.centre[i] + u_i, pack.radius[i]);
-        pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, c.h0);
-        if (h > 0)
-          {
-            const double p = hertz_force(c.k_n, h);
-            if (with_gradient)
-              {
-                (*gradient)[3 * i + ax] -= sgn * p;
-                max_p  = std::max(max_p, p);
-                max_dp = std::max(max_dp, std::abs(p - c.p0));
-              }
-            if (state)
-              {
-                ++state->n_contacts;
-                ++state->coordination[i];
-                state->wall_force[w] += p;
-                state->max_contact_force = std::max(state->max_contact_force, p);
-                sum_p += p;
-              }
-          }
-        if (!friction || c.p0 <= 0 || c.k_s <= 0)
-          continue;
-        Tensor<1, 3> n_w;
-        n_w[ax]                    = sgn;
-        const Tensor<1, 3> omega_i = block(theta, rot + 3 * i) / pack.radius[i];
-        Tensor<1, 3>       u_s     = u_i - (u_i * n_w) * n_w -
-                           c.lever_i * dealii::cross_product_3d(omega_i, n_w);
-        const Tensor<1, 3> y = c.q0 - c.k_s * u_s;
-        const Tensor<1, 3> q = capped_force(y, c.q_max);
-        pi -= (capped_potential(c.q0, c.q_max) - capped_potential(y, c.q_max)) /
-              c.k_s;
-        if (state && h > 0 && y.norm() > c.q_max)
-          ++state->n_sliding;
-        if (q_out)
-          (*q_out)[n_pairs + k] = q;
-        Tensor<1, 3> moment_i;
-        if (with_gradient)
-          {
-            add_block(*gradient, 3 * i, q, -1.);
-            moment_i = -c.lever_i * dealii::cross_product_3d(n_w, q);
-          }
-        if (torsion && c.k_t > 0)
-          {
-            const double omega_t = omega_i * n_w;
-            const double y_t     = c.m0 - c.k_t * omega_t;
-            const double m       = capped_force(y_t, c.m_max);
-            pi -= (capped_potential(c.m0, c.m_max) -
-                   capped_potential(y_t, c.m_max)) /
-                  c.k_t;
-            if (m_out)
-              (*m_out)[n_pairs + k] = m;
-            if (with_gradient)
-              moment_i += m * n_w;
-          }
-        if (with_gradient)
-          add_block(*gradient, rot + 3 * i, moment_i, -1. / pack.radius[i]);
+        pi += sums.pi;
+        sum_p += sums.sum_p;
+        max_p  = std::max(max_p, sums.max_p);
+        max_dp = std::max(max_dp, sums.max_dp);
       }
 
     // Weight, along -z.
     if (model.gravity)
       for (unsigned int i = 0; i < n; ++i)
-        {
-          const double weight = pack.mass(i) * model.gravity_acceleration;
-          pi += weight * theta[3 * i + 2];
-          if (with_gradient)
-            (*gradient)[3 * i + 2] += weight;
-        }
-    if (state && state->n_contacts > 0)
-      state->mean_normal_force = sum_p / state->n_contacts;
+        pi += pack.mass(i) * model.gravity_acceleration * theta[3 * i + 2];
+
     if (with_gradient)
       {
+        // Each grain gathers its contacts' contributions in contact order.
+        update_incidence();
+        const std::size_t two_pairs = 2 * n_pairs;
+        const auto        gather    = [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int i = begin; i < end; ++i)
+            {
+              Tensor<1, 3> g_u, g_rot;
+              for (unsigned int e = incidence_start[i]; e < incidence_start[i + 1]; ++e)
+                {
+                  const std::size_t entry = incidence[e];
+                  if (entry < two_pairs)
+                    {
+                      const PairResult &result = pair_results[entry / 2];
+                      if (entry % 2 == 0)
+                        {
+                          g_u -= result.force;
+                          g_rot += result.rotation_i;
+                        }
+                      else
+                        {
+                          g_u += result.force;
+                          g_rot += result.rotation_j;
+                        }
+                    }
+                  else
+                    {
+                      const WallResult &result = wall_results[entry - two_pairs];
+                      g_u += result.gradient;
+                      g_rot += result.rotation;
+                    }
+                }
+              if (model.gravity)
+                g_u[2] += pack.mass(i) * model.gravity_acceleration;
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  (*gradient)[3 * i + d]       = g_u[d];
+                  (*gradient)[rot + 3 * i + d] = g_rot[d];
+                }
+            }
+        };
+        if (state == nullptr)
+          dealii::parallel::apply_to_subranges(0u, n, gather, 64);
+        else
+          gather(0, n);
         last_max_contact_force = max_p;
         last_max_force_change  = max_dp;
       }
+    if (state && state->n_contacts > 0)
+      state->mean_normal_force = sum_p / state->n_contacts;
     return pi;
   }
 

@@ -4,14 +4,24 @@
 rolling on a friction floor under tilted gravity, 2D and 3D, so particles
 cross the partition boundary, a plastic box squeezed by a moving wall, and
 two disks colliding with frictional contact across the partition boundary
-(ghost particles complete the per-body fields)."""
+(ghost particles complete the per-body fields).
+
+Load balance: a box of material points in one corner of the grid. Without
+balancing, one rank holds all of them; with 'Solver/Balance particles
+across ranks' the work per rank (100 per cell + 600 per material point)
+must agree to within the weight of the heaviest cell on each side of the
+cut (p4est cuts the Morton curve of weighted cells as close to half the
+total as a cell boundary allows), and the statistics stay those of one
+rank."""
+import re
+
 from scene_test import *
 
 
 def compare(name, entries, bodies):
-    rows = {}
+    rows, outputs = {}, {}
     for ranks in (1, 2):
-        rows[ranks] = run(f"{name}_np{ranks}", entries, bodies, ranks=ranks)[2]
+        _, outputs[ranks], rows[ranks] = run(f"{name}_np{ranks}", entries, bodies, ranks=ranks)
     check(f"{name}: same number of rows", len(rows[1]) == len(rows[2]) and len(rows[1]) > 10,
           f"{len(rows[1])} vs {len(rows[2])}")
     worst, where = 0.0, ""
@@ -35,6 +45,14 @@ def compare(name, entries, bodies):
             if error > worst:
                 worst, where = error, f"{column} at step {int(a['step'])}"
     check(f"{name}: 1 rank vs 2 ranks within 1e-10", worst <= 1e-10, f"largest difference {worst:.2e} ({where})")
+    return outputs[2]
+
+
+def balance(output):
+    """(particles min, max, work min, max) from the console line."""
+    m = re.search(r"particles per rank: (\d+) \.\. (\d+);.*work per rank.*: (\d+) \.\. (\d+)", output)
+    check("console reports particles and work per rank", m is not None)
+    return tuple(int(g) for g in m.groups()) if m else (0, 0, 0, 0)
 
 
 elastic = {"Bulk modulus": 1e6, "Shear modulus": 5e5, "Density": 1000, "Particles per cell direction": 2}
@@ -61,4 +79,28 @@ compare("contact_2d", {
     "Grid/Subdivisions": "40, 20", "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": 0.3,
 }, [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0"),
     dict(elastic, Shape="disk", Center="1.255, 0.56", Radius=0.2, Velocity="-5, 0")])
+
+# 32 x 32 cells, a box of 8 x 8 cells with 4 x 4 points per cell (1024
+# points) in the lower left corner, moving and squeezed against the walls
+corner = {
+    "Dimension": 2, "Gravity": "-5, -9.81", "Time/End time": 0.04,
+    "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 1", "Grid/Subdivisions": "32, 32",
+    "Boundary conditions/Types": "0: slip, 1: slip, 2: slip, 3: slip",
+}
+corner_box = [dict(elastic, **{"Shape": "box", "Lower corner": "0, 0", "Upper corner": "0.25, 0.25",
+                               "Particles per cell direction": 4, "Velocity": "1, 0.5"})]
+fewest, most, work_min, work_max = balance(compare("corner_2d", corner, corner_box))
+n_points, heaviest_cell = 1024, 100 + 600 * 16
+check("corner: all points counted", fewest + most == n_points, f"{fewest} + {most}")
+check("corner: work per rank balanced to two cells", work_max - work_min <= 2 * heaviest_cell,
+      f"work {work_min} .. {work_max}, bound {2 * heaviest_cell}")
+# points per rank: with equal work W/2 = 358,400 per rank, the rank holding
+# the empty cells has fewer points by (100/600) x (difference in cells) plus
+# what the two-cell tolerance allows: about 37 full cells (592 points) stay
+# with one rank; the bound 250 (a 38:62 split) keeps a margin
+check("corner: points per rank differ by less than 250", most - fewest < 250, f"{fewest} .. {most}")
+unbalanced = dict(corner, **{"Solver/Balance particles across ranks": "false"})
+fewest_u, most_u, _, _ = balance(run("corner_2d_unbalanced", unbalanced, corner_box, ranks=2)[1])
+check("corner without balancing: one rank holds every point", (fewest_u, most_u) == (0, n_points),
+      f"{fewest_u} .. {most_u}")
 finish()

@@ -7,6 +7,13 @@
 //   qusgm_benchmark accuracy <cache dir> N
 //   qusgm_benchmark validation <cache dir> N [sigma_c of stage (a) in Pa]
 //   qusgm_benchmark dem <cache dir> N
+//   qusgm_benchmark threads <cache dir> N [max threads = 2]
+//
+// threads: the time of one evaluation of Pi and grad Pi (mean of 200, at
+// the affine guess of a uniaxial increment of 1e-4) and of one increment
+// (L-BFGS, force test 1e-4) with 1, 2, ... threads, and whether the
+// results are bit-identical to the one-thread results
+// (contrib/benchmarks/scaling/run.sh runs it).
 //
 // validation: from the compacted pack, for mu = 0.3, 0.5 and 0, friction
 // activation by uniaxial strain until the sliding ratio saturates, then
@@ -17,6 +24,9 @@
 // paper's stage (a)), cached in <cache dir>, then friction is activated by
 // five uniaxial increments of 1e-4 before anything is timed.
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+
+#include <sable/base/common_parameters.h>
 
 #include <sable/qusgm/load_path.h>
 #include <sable/qusgm/preparation.h>
@@ -260,6 +270,62 @@ namespace
             400000};
   }
 
+  // Threads: evaluations and one increment with 1 .. max_threads threads.
+  void
+  thread_scaling(const Simulation &start, const unsigned int max_threads)
+  {
+    const unsigned int n = start.pack.size();
+    std::cout << "threads,contacts,evaluation_ms,evaluation_speedup,increment_s,"
+                 "increment_speedup,iterations,pi_difference,gradient_difference,"
+                 "stress_change_difference"
+              << std::endl;
+    double                 pi_1 = 0, evaluation_1 = 0, increment_1 = 0;
+    dealii::Vector<double> gradient_1;
+    std::array<double, 3>  d_stress_1{};
+    for (unsigned int threads = 1; threads <= max_threads; ++threads)
+      {
+        sable::set_threads(threads);
+        Simulation     sim = start;
+        WorkFunctional f(sim.pack, sim.network, sim.model);
+        Walls          walls = sim.walls;
+        const auto     move = LoadPath::wall_moves({{0, 0, 1e-4}}, sim.undeformed_lengths);
+        dealii::Vector<double> theta(6 * n), gradient(6 * n);
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int i = 0; i < n; ++i)
+            theta[3 * i + a] = move[a] + (move[a + 3] - move[a]) *
+                                           (sim.pack.centre[i][a] - walls.position[a]) /
+                                           walls.length(a);
+        for (unsigned int w = 0; w < 6; ++w)
+          walls.position[w] += move[w];
+        f.set_walls(walls);
+        double pi = f.value_and_gradient(theta, gradient); // warm-up
+        const unsigned int repeats = 200;
+        const auto         t0      = std::chrono::steady_clock::now();
+        for (unsigned int k = 0; k < repeats; ++k)
+          pi = f.value_and_gradient(theta, gradient);
+        const double evaluation =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
+          repeats;
+        const Outcome o = run(start, lbfgs(1e-4), 1e-4);
+        if (threads == 1)
+          {
+            pi_1 = pi, evaluation_1 = evaluation, increment_1 = o.seconds;
+            gradient_1 = gradient, d_stress_1 = o.d_stress;
+          }
+        double g_diff = 0, s_diff = 0;
+        for (unsigned int k = 0; k < gradient.size(); ++k)
+          g_diff = std::max(g_diff, std::abs(gradient[k] - gradient_1[k]));
+        for (unsigned int a = 0; a < 3; ++a)
+          s_diff = std::max(s_diff, std::abs(o.d_stress[a] - d_stress_1[a]));
+        std::cout << dealii::MultithreadInfo::n_threads() << ','
+                  << sim.network.pairs.size() + sim.network.wall_contacts.size() << ','
+                  << 1e3 * evaluation << ',' << evaluation_1 / evaluation << ','
+                  << o.seconds << ',' << increment_1 / o.seconds << ','
+                  << o.result.iterations << ',' << std::abs(pi - pi_1) << ',' << g_diff
+                  << ',' << s_diff << std::endl;
+      }
+  }
+
   void
   print(const std::string &name, const Outcome &o, const Outcome &ref,
         const unsigned int n, const double d_eps)
@@ -276,13 +342,22 @@ namespace
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc,
+                                              argv,
+                                              dealii::numbers::invalid_unsigned_int);
+  sable::set_threads(1);
   if (argc < 4)
     {
-      std::cerr << "Usage: qusgm_benchmark scaling|accuracy <cache dir> N...\n";
+      std::cerr << "Usage: qusgm_benchmark scaling|accuracy|threads <cache dir> N...\n";
       return 1;
     }
   const std::string mode = argv[1], cache = argv[2];
+  if (mode == "threads")
+    {
+      const Simulation start = prepared(std::stoi(argv[3]), cache);
+      thread_scaling(start, argc > 4 ? std::stoi(argv[4]) : 2);
+      return 0;
+    }
   std::cout << "grains,strain_increment,method,seconds,iterations,evaluations,"
                "relative_residual,stress_change_error,bulk_modulus_error,"
                "shear_modulus_error,stopped_by"

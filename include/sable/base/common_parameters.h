@@ -16,7 +16,7 @@ namespace sable
 
   /**
    * The entries at the top level of every sable parameter file:
-   * `Model` (mpm | qusgm) and `Dimension` (2 | 3, MPM only).
+   * `Model` (mpm | qusgm), `Dimension` (2 | 3, MPM only) and `Threads`.
    */
   void
   declare_common_parameters(dealii::ParameterHandler &prm);
@@ -25,7 +25,18 @@ namespace sable
   {
     Model        model     = Model::mpm;
     unsigned int dimension = 2;
+    /// Threads per MPI rank (0: one per core); see set_threads().
+    unsigned int threads = 1;
   };
+
+  /**
+   * Limit deal.II's task scheduler (TBB) to @p threads threads per MPI rank
+   * (0: as many as the machine has cores). Results do not depend on it:
+   * every threaded loop in sable writes per item or reduces in a fixed
+   * order.
+   */
+  void
+  set_threads(const unsigned int threads);
 
   /**
    * Read only the common entries of @p filename, skipping all others, so the

@@ -204,6 +204,13 @@ namespace sable::mpm
     UpdateScheme update_scheme = UpdateScheme::musl;
     /// Fraction of PIC in the particle velocity update (0 = pure FLIP).
     double pic_fraction = 0.;
+    /// With two or more MPI ranks: after seeding, repartition the grid so
+    /// that every rank holds about the same work, a cell costing
+    /// Simulator::cell_cost plus Simulator::particle_cost per material
+    /// point (Solver/Balance particles across ranks, true by default in a
+    /// scene file). Off by default here: it repartitions the caller's
+    /// triangulation, which invalidates data other objects keep on it.
+    bool balance_particles = false;
 
     Tensor<1, dim> gravity = {};
 

@@ -152,6 +152,32 @@ namespace sable::mpm
       return boundary_work;
     }
 
+    /**
+     * Repartition the grid over the MPI ranks by the cell weights
+     * (cell_cost + particle_cost per material point; the weight signal is
+     * connected when Solver/Balance particles across ranks is set), move
+     * the particles with their cells, and rebuild what depends on the
+     * partition: the grid caches, boundary nodes, nodal vectors and ghost
+     * particles. initialize() calls it once after seeding; after a mesh
+     * change, call it instead of repeating those steps.
+     */
+    void
+    rebalance();
+
+    /// Material points per rank after the last rebalance(): min, max.
+    std::pair<unsigned long long, unsigned long long>
+    particles_per_rank() const;
+
+    /**
+     * Partition weights (p4est cell weights, integers): a cell costs
+     * cell_cost, each material point in it particle_cost more. From the
+     * 2D step time on one core (doc/benchmarks.md, eight measurements on
+     * a shared machine: 0.03-0.24 us per cell, 0.24-0.68 us per material
+     * point per step, ratio 1.6-26, median 6.5): 100 : 600.
+     */
+    static constexpr unsigned int cell_cost     = 100;
+    static constexpr unsigned int particle_cost = 600;
+
   private:
     using NodalVector = LinearAlgebra::distributed::Vector<double>;
 
@@ -182,6 +208,10 @@ namespace sable::mpm
     /// Size the nodal vectors for the current grid.
     void
     allocate_nodal_data();
+    /// Rebuild the grid caches, boundary nodes and nodal vectors after
+    /// the triangulation changed (refinement, repartitioning).
+    void
+    setup_after_mesh_change();
     /// Refine and coarsen the grid by the scene's criteria; particles
     /// follow through the ParticleHandler, the grid caches are rebuilt.
     void
@@ -203,8 +233,16 @@ namespace sable::mpm
     /// USL: velocity, position, and stress in one pass over the particles.
     void
     grid_to_particles(const bool update_positions, const bool update_stresses);
+    /// F and stress of every locally owned particle from the velocity
+    /// gradients grid_to_particles() stored; threaded over cells.
     void
-    update_stresses_from_grid();
+    update_particle_stresses();
+    /// Console line: material points, cells and work per rank (min .. max).
+    void
+    print_balance() const;
+    unsigned int
+    cell_weight(const typename Triangulation<dim>::cell_iterator &cell,
+                const typename Triangulation<dim>::CellStatus     status) const;
     void
     sort_particles();
     void
@@ -241,7 +279,11 @@ namespace sable::mpm
     std::vector<double> nodal_mass;
     std::vector<double> old_velocity;
     std::vector<double> new_velocity;
+    /// per locally owned particle (by local index): L = grad v of the
+    /// strain update, from grid_to_particles() to update_particle_stresses()
+    std::vector<Tensor<2, dim>> velocity_gradients;
     bool                has_gravity = false;
+    boost::signals2::connection weight_connection;
 
     /// multi-body contact: only with a contact model and two or more bodies
     bool                                     use_contact = false;

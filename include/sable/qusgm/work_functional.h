@@ -108,10 +108,42 @@ namespace sable::qusgm
              std::vector<Tensor<1, 3>> *q_out,
              std::vector<double>       *m_out) const;
 
+    /// Rebuild the grain -> contacts index if the network was rebuilt.
+    void
+    update_incidence() const;
+
     const Pack           &pack;
     const ContactNetwork &network;
     const ContactModel    model;
     Walls                 walls;
+
+    /// Contacts per chunk of the threaded loop; fixed, so that the sums do
+    /// not depend on the number of threads.
+    static constexpr std::size_t chunk_size = 128;
+    struct ChunkSums
+    {
+      double pi = 0, sum_p = 0, max_p = 0, max_dp = 0;
+    };
+    /// Gradient contributions of a grain-grain contact: -force to grain
+    /// i's and +force to grain j's displacement block, rotation_i and
+    /// rotation_j to their rotation blocks.
+    struct PairResult
+    {
+      Tensor<1, 3> force, rotation_i, rotation_j;
+    };
+    struct WallResult
+    {
+      Tensor<1, 3> gradient, rotation;
+    };
+    mutable std::vector<ChunkSums>  chunk_sums;
+    mutable std::vector<PairResult> pair_results;
+    mutable std::vector<WallResult> wall_results;
+    /// grain i's contacts: incidence[incidence_start[i] .. incidence_start[i+1]),
+    /// 2k / 2k+1 for grain i / j of pair k, 2 n_pairs + k for wall contact k;
+    /// rebuilt when the network's n_builds or sizes change
+    mutable std::vector<unsigned int>  incidence_start;
+    mutable std::vector<std::size_t>   incidence;
+    mutable std::array<std::size_t, 4> incidence_key{};
   };
 } // namespace sable::qusgm
 
