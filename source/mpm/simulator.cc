@@ -679,86 +679,113 @@ namespace sable::mpm
                                     const bool update_stresses)
   {
     const double alpha = parameters.pic_fraction;
-    double       max_speed = 0, max_particle_speed = 0;
-    bool         failed = false, too_far = false;
-    Point<dim>   failure_location;
-    typename Grid<dim>::Shape shape;
     if (update_stresses)
       velocity_gradients.resize(particle_handler->get_max_local_particle_index());
-    for (const auto &cell : triangulation.active_cell_iterators())
+    const std::vector<typename Triangulation<dim>::active_cell_iterator> cells =
+      cells_with_particles();
+
+    // what a range of cells reports; maxima and the failure with the lowest
+    // particle id do not depend on how the cells are split among threads
+    struct Report
+    {
+      double                max_speed = 0, max_particle_speed = 0;
+      bool                  failed = false, too_far = false;
+      types::particle_index failed_id = numbers::invalid_unsigned_int;
+      Point<dim>            failure_location;
+
+      void
+      fail(const bool distance, const types::particle_index id, const Point<dim> &x)
       {
-        if (!cell->is_locally_owned())
-          continue;
-        const auto particles = particle_handler->particles_in_cell(cell);
-        if (particles.begin() == particles.end())
-          continue;
-        const typename Grid<dim>::CellData &data = grid.cell_data(cell);
-        for (auto &particle : particles)
-          {
-            const auto props = particle.get_properties();
-            const unsigned int body = static_cast<unsigned int>(props[layout.body]);
-            grid.evaluate(data, particle.get_reference_location(), shape);
-            Tensor<1, dim> velocity_change, grid_velocity;
-            Tensor<2, dim> L;
-            for (unsigned int v = 0; v < shape.n_nodes; ++v)
-              {
-                const unsigned int node  = shape.nodes[v];
-                const double *     v_new = &new_velocity[node * dim];
-                const double *     v_old = &old_velocity[node * dim];
-                // each particle reads its own body's field
-                if (use_contact && body_fields.is_contact_node(node))
-                  {
-                    const auto &record = body_fields.record(node, body);
-                    v_new              = &record.new_velocity[0];
-                    v_old              = &record.old_velocity[0];
-                  }
-                const double        N     = shape.values[v];
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    if (update_positions)
-                      {
-                        velocity_change[d] += N * (v_new[d] - v_old[d]);
-                        grid_velocity[d] += N * v_new[d];
-                      }
-                    if (update_stresses)
-                      for (unsigned int e = 0; e < dim; ++e)
-                        L[d][e] += v_new[d] * shape.gradients[v][e];
-                  }
-              }
-            if (update_positions)
-              {
-                double speed2 = 0;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    double &v = props[layout.velocity + d];
-                    v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
-                    speed2 += v * v;
-                  }
-                // a particle may not cross more than one cell per step
-                const Tensor<1, dim> displacement = time_step * grid_velocity;
-                Point<dim>           location     = particle.get_location();
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (std::abs(displacement[d]) * data.inverse_h[d] > 1.)
-                    {
-                      too_far          = true;
-                      failure_location = location;
-                    }
-                location += displacement;
-                particle.set_location(location);
-                max_speed = std::max(max_speed, std::sqrt(speed2) + body_wave_speed[body]);
-                max_particle_speed = std::max(max_particle_speed, std::sqrt(speed2));
-                if (!std::isfinite(speed2))
-                  {
-                    failed           = true;
-                    failure_location = location;
-                  }
-              }
-            if (update_stresses)
-              velocity_gradients[particle.get_local_index()] = L;
-          }
+        if ((failed || too_far) && id >= failed_id)
+          return;
+        (distance ? too_far : failed) = true;
+        failed_id                     = id;
+        failure_location              = x;
       }
+    };
+    Report     report;
+    std::mutex report_mutex;
+
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(cells.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        Report                    local;
+        typename Grid<dim>::Shape shape;
+        for (unsigned int c = begin; c < end; ++c)
+          {
+            const typename Grid<dim>::CellData &data = grid.cell_data(cells[c]);
+            for (auto &particle : particle_handler->particles_in_cell(cells[c]))
+              {
+                const auto         props = particle.get_properties();
+                const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+                grid.evaluate(data, particle.get_reference_location(), shape);
+                Tensor<1, dim> velocity_change, grid_velocity;
+                Tensor<2, dim> L;
+                for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                  {
+                    const unsigned int node  = shape.nodes[v];
+                    const double *     v_new = &new_velocity[node * dim];
+                    const double *     v_old = &old_velocity[node * dim];
+                    // each particle reads its own body's field
+                    if (use_contact && body_fields.is_contact_node(node))
+                      {
+                        const auto &record = body_fields.record(node, body);
+                        v_new              = &record.new_velocity[0];
+                        v_old              = &record.old_velocity[0];
+                      }
+                    const double N = shape.values[v];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        if (update_positions)
+                          {
+                            velocity_change[d] += N * (v_new[d] - v_old[d]);
+                            grid_velocity[d] += N * v_new[d];
+                          }
+                        if (update_stresses)
+                          for (unsigned int e = 0; e < dim; ++e)
+                            L[d][e] += v_new[d] * shape.gradients[v][e];
+                      }
+                  }
+                if (update_positions)
+                  {
+                    double speed2 = 0;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        double &v = props[layout.velocity + d];
+                        v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
+                        speed2 += v * v;
+                      }
+                    // a particle may not cross more than one cell per step
+                    const Tensor<1, dim> displacement = time_step * grid_velocity;
+                    Point<dim>           location     = particle.get_location();
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (std::abs(displacement[d]) * data.inverse_h[d] > 1.)
+                        local.fail(true, particle.get_id(), location);
+                    location += displacement;
+                    particle.set_location(location);
+                    local.max_speed =
+                      std::max(local.max_speed, std::sqrt(speed2) + body_wave_speed[body]);
+                    local.max_particle_speed = std::max(local.max_particle_speed, std::sqrt(speed2));
+                    if (!std::isfinite(speed2))
+                      local.fail(false, particle.get_id(), location);
+                  }
+                if (update_stresses)
+                  velocity_gradients[particle.get_local_index()] = L;
+              }
+          }
+        std::lock_guard<std::mutex> lock(report_mutex);
+        report.max_speed          = std::max(report.max_speed, local.max_speed);
+        report.max_particle_speed = std::max(report.max_particle_speed, local.max_particle_speed);
+        if (local.failed || local.too_far)
+          report.fail(local.too_far, local.failed_id, local.failure_location);
+      },
+      16);
+    const double max_speed = report.max_speed, max_particle_speed = report.max_particle_speed;
+    const bool   failed = report.failed, too_far = report.too_far;
+    const Point<dim> failure_location = report.failure_location;
     if (update_stresses)
-      update_particle_stresses();
+      update_particle_stresses(cells);
     if (update_positions)
       {
         if (mesh_refinement)
@@ -779,17 +806,25 @@ namespace sable::mpm
   }
 
   template <int dim>
+  std::vector<typename Triangulation<dim>::active_cell_iterator>
+  Simulator<dim>::cells_with_particles() const
+  {
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && particle_handler->n_particles_in_cell(cell) > 0)
+        cells.push_back(cell);
+    return cells;
+  }
+
+  template <int dim>
   void
-  Simulator<dim>::update_particle_stresses()
+  Simulator<dim>::update_particle_stresses(
+    const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells)
   {
     // The cells with particles, then a threaded loop over them: each
     // particle's F and stress depend only on its own data and L, so the
     // result does not depend on the number of threads.
     TimerOutput::Scope scope(timer, "stress update (in grid to particles)");
-    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && particle_handler->n_particles_in_cell(cell) > 0)
-        cells.push_back(cell);
     std::mutex            failure_mutex;
     types::particle_index failed_id = numbers::invalid_unsigned_int;
     Point<dim>            failure_location;

@@ -233,10 +233,14 @@ namespace sable::mpm
     /// USL: velocity, position, and stress in one pass over the particles.
     void
     grid_to_particles(const bool update_positions, const bool update_stresses);
-    /// F and stress of every locally owned particle from the velocity
-    /// gradients grid_to_particles() stored; threaded over cells.
+    /// The locally owned cells holding material points.
+    std::vector<typename Triangulation<dim>::active_cell_iterator>
+    cells_with_particles() const;
+    /// F and stress of every locally owned particle in @p cells from the
+    /// velocity gradients grid_to_particles() stored; threaded over cells.
     void
-    update_particle_stresses();
+    update_particle_stresses(
+      const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells);
     /// Console line: material points, cells and work per rank (min .. max).
     void
     print_balance() const;
