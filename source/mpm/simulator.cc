@@ -622,23 +622,23 @@ namespace sable::mpm
               new_velocity[i * dim + d] = v;
           }
       }
+    double work = 0;
     if (!boundary_conditions.empty())
       {
         if (with_forces && material_extent.size() > 0)
           boundary_conditions.set_material_extent(material_extent.get_values(), time_step);
         if (with_forces)
-          {
-            const double work = boundary_conditions.apply(
-              new_velocity,
-              nodal_mass,
-              nodal_data.get_partitioner()->locally_owned_size() / n_components);
-            // only moving walls do work: no reduction over ranks otherwise
-            if (boundary_conditions.has_moving_walls())
-              boundary_work += Utilities::MPI::sum(work, communicator);
-          }
+          work = boundary_conditions.apply(new_velocity,
+                                           nodal_mass,
+                                           nodal_data.get_partitioner()->locally_owned_size() /
+                                             n_components);
         else
           boundary_conditions.apply_to_remapped(new_velocity, nodal_mass);
       }
+    // only moving walls do work: no reduction over ranks otherwise; every
+    // rank takes part, also one without boundary nodes
+    if (with_forces && boundary_conditions.has_moving_walls())
+      boundary_work += Utilities::MPI::sum(work, communicator);
     if (use_contact)
       update_body_velocities(with_forces);
   }
