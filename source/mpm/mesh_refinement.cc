@@ -3,6 +3,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <sable/mpm/mesh_refinement.h>
+#include <sable/mpm/owned_cell_strip.h>
 
 #include <algorithm>
 
@@ -64,57 +65,27 @@ namespace sable::mpm
     const parallel::distributed::Triangulation<dim> &triangulation,
     const std::vector<BodyParameters<dim>> &         bodies) const
   {
-    std::vector<CellContent> contents(triangulation.n_active_cells());
-    // owned cells sorted by their lower x, so that each body visits only
-    // the strip of cells its bounding box spans
-    struct OwnedCell
-    {
-      typename Triangulation<dim>::active_cell_iterator cell;
-      Point<dim>                                        lower, upper;
-    };
-    std::vector<OwnedCell> cells;
-    double                 widest = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const auto corners = cell->bounding_box().get_boundary_points();
-          cells.push_back({cell, corners.first, corners.second});
-          widest = std::max(widest, corners.second[0] - corners.first[0]);
-        }
-    std::sort(cells.begin(), cells.end(), [](const auto &a, const auto &b) {
-      return a.lower[0] < b.lower[0];
-    });
+    std::vector<CellContent>  contents(triangulation.n_active_cells());
+    const OwnedCellStrip<dim> cells(triangulation);
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
-        const BodyParameters<dim> &body = bodies[b];
-        const auto                 box  = body.bounding_box();
-        const unsigned int         k    = body.particles_per_direction;
+        const BodyParameters<dim> &body  = bodies[b];
+        const unsigned int         k     = body.particles_per_direction;
         unsigned int               n_sub = 1;
         for (unsigned int d = 0; d < dim; ++d)
           n_sub *= k;
-        const auto first = std::lower_bound(cells.begin(),
-                                            cells.end(),
-                                            box.first[0] - widest,
-                                            [](const OwnedCell &c, const double x) {
-                                              return c.lower[0] < x;
-                                            });
-        for (auto it = first; it != cells.end() && it->lower[0] <= box.second[0]; ++it)
-          {
-            bool overlaps = true;
-            for (unsigned int d = 0; d < dim; ++d)
-              overlaps = overlaps && it->upper[d] >= box.first[d] && it->lower[d] <= box.second[d];
-            if (!overlaps)
-              continue;
-            unsigned int inside = 0;
-            for (unsigned int i = 0; i < n_sub; ++i)
-              {
-                Point<dim> x;
-                for (unsigned int d = 0, rest = i; d < dim; ++d, rest /= k)
-                  x[d] = it->lower[d] + ((rest % k) + 0.5) / k * (it->upper[d] - it->lower[d]);
-                inside += body.contains(x) ? 1 : 0;
-              }
-            contents[it->cell->active_cell_index()].add(b, inside);
-          }
+        cells.for_each_overlapping(body.bounding_box(), [&](const auto &c) {
+          unsigned int inside = 0;
+          for (unsigned int i = 0; i < n_sub; ++i)
+            {
+              const Point<dim> reference = seeding_point<dim>(i, k);
+              Point<dim>       x;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] = c.lower[d] + reference[d] * (c.upper[d] - c.lower[d]);
+              inside += body.contains(x) ? 1 : 0;
+            }
+          contents[c.cell->active_cell_index()].add(b, inside);
+        });
       }
     return contents;
   }

@@ -181,24 +181,10 @@ namespace sable::mpm
     create_particle_handler();
 
     // seed every body; ids are unique over all ranks
-    // the locally owned cells sorted by their lower x, so that each body
-    // visits only the strip of cells its bounding box spans
-    std::vector<OwnedCell> owned_cells;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const auto corners = cell->bounding_box().get_boundary_points();
-          owned_cells.push_back({cell, corners.first, corners.second});
-        }
-    std::sort(owned_cells.begin(), owned_cells.end(), [](const auto &a, const auto &b) {
-      return a.lower[0] < b.lower[0];
-    });
-    double widest = 0;
-    for (const OwnedCell &c : owned_cells)
-      widest = std::max(widest, c.upper[0] - c.lower[0]);
-    types::particle_index next_id = 0;
+    const OwnedCellStrip<dim> owned_cells(triangulation);
+    types::particle_index     next_id = 0;
     for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
-      seed_body(b, owned_cells, widest, next_id);
+      seed_body(b, owned_cells, next_id);
     {
       types::particle_index offset = 0;
       const types::particle_index local = particle_handler->n_locally_owned_particles();
@@ -338,10 +324,9 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::seed_body(const unsigned int            b,
-                            const std::vector<OwnedCell> &owned_cells,
-                            const double                  widest,
-                            types::particle_index &       next_id)
+  Simulator<dim>::seed_body(const unsigned int         b,
+                            const OwnedCellStrip<dim> &owned_cells,
+                            types::particle_index &    next_id)
   {
     const BodyParameters<dim> &body     = parameters.bodies[b];
     const Material &           material = *materials[b];
@@ -358,31 +343,17 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       n_sub *= k;
 
-    const auto first = std::lower_bound(owned_cells.begin(),
-                                        owned_cells.end(),
-                                        box.first[0] - widest,
-                                        [](const OwnedCell &c, const double x) {
-                                          return c.lower[0] < x;
-                                        });
-    for (auto it = first; it != owned_cells.end() && it->lower[0] <= box.second[0]; ++it)
-      {
-        const auto &     cell  = it->cell;
-        const Point<dim> lower = it->lower;
-        const Point<dim> upper = it->upper;
-        bool             overlaps = true;
-        for (unsigned int d = 0; d < dim; ++d)
-          overlaps = overlaps && upper[d] >= box.first[d] && lower[d] <= box.second[d];
-        if (!overlaps)
-          continue;
+    owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
+        const auto &     cell  = strip_cell.cell;
+        const Point<dim> lower = strip_cell.lower;
+        const Point<dim> upper = strip_cell.upper;
         const double sub_volume = cell->measure() / n_sub;
         for (unsigned int i = 0; i < n_sub; ++i)
           {
-            Point<dim> reference, x;
-            for (unsigned int d = 0, rest = i; d < dim; ++d, rest /= k)
-              {
-                reference[d] = ((rest % k) + 0.5) / k;
-                x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
-              }
+            const Point<dim> reference = seeding_point<dim>(i, k);
+            Point<dim>       x;
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
             if (!body.contains(x))
               continue;
             std::fill(properties.begin(), properties.end(), 0.);
@@ -409,7 +380,7 @@ namespace sable::mpm
             particle_handler->insert_particle(x, reference, next_id++, cell,
                                               make_array_view(properties));
           }
-      }
+      });
   }
 
   template <int dim>

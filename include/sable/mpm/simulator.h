@@ -13,6 +13,7 @@
 #include <sable/mpm/grid.h>
 #include <sable/mpm/materials/material.h>
 #include <sable/mpm/mesh_refinement.h>
+#include <sable/mpm/owned_cell_strip.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
 #include <sable/mpm/postprocess/statistics.h>
@@ -181,12 +182,6 @@ namespace sable::mpm
   private:
     using NodalVector = LinearAlgebra::distributed::Vector<double>;
 
-    struct OwnedCell
-    {
-      typename Triangulation<dim>::active_cell_iterator cell;
-      Point<dim>                                        lower;
-      Point<dim>                                        upper;
-    };
     /// The bodies' materials, the contact model and the refinement
     /// criteria (initialize() and resume()).
     void
@@ -201,10 +196,9 @@ namespace sable::mpm
     bool
     finished() const;
     void
-    seed_body(const unsigned int            body_index,
-              const std::vector<OwnedCell> &owned_cells,
-              const double                  widest_cell,
-              types::particle_index &       next_id);
+    seed_body(const unsigned int         body_index,
+              const OwnedCellStrip<dim> &owned_cells,
+              types::particle_index &    next_id);
     /// Size the nodal vectors for the current grid.
     void
     allocate_nodal_data();
