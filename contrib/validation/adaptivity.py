@@ -24,18 +24,15 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from a1_incline import rigid_acceleration  # noqa: E402
+from a2_a3 import a3_backspin as a3_rigid  # noqa: E402
+
+
 def a1_rigid(t):
-    """Rolling disk from rest: a = 2/3 g sin(theta) (tan(theta) < 3 mu)."""
-    a = 2.0 / 3.0 * 9.8 * math.sin(math.pi / 6)
+    """Rolling disk from rest (theta = pi/6, mu = 0.5): x - x0 and v."""
+    a, _ = rigid_acceleration(math.pi / 6, 0.5)
     return 0.5 * a * t * t, a * t
-
-
-def a3_rigid(t):
-    """Backspin sphere: friction mu g accelerates it until rolling at 2/7 s."""
-    t1 = 2.0 / 7.0
-    if t <= t1:
-        return 2.5 * t * t, 5.0 * t
-    return 2.5 * t1 * t1 + 10.0 / 7.0 * (t - t1), 10.0 / 7.0
 
 
 # name, scene, coarse subdivisions, rigid solution, cell label (coarse,

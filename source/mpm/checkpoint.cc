@@ -452,15 +452,11 @@ namespace sable::mpm
     // the mesh with its refinement, and the material points
     triangulation.load((path / mesh_file).string());
     particle_handler->deserialize();
-    grid.setup();
-    boundary_conditions.setup(grid);
-    if (use_contact && parallel)
-      particle_handler->exchange_ghost_particles(true);
+    setup_after_mesh_change();
     require(particle_handler->n_global_particles() == state.n_particles,
             "cannot resume from '" + directory + "': it should hold " +
               std::to_string(state.n_particles) + " material points, " +
               std::to_string(particle_handler->n_global_particles()) + " were read");
-    allocate_nodal_data();
 
     const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
     step_number             = state.step_number;

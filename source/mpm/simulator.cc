@@ -202,10 +202,14 @@ namespace sable::mpm
                  const typename Triangulation<dim>::CellStatus     status) {
             return cell_weight(cell, status);
           });
-        rebalance();
+        rebalance(); // also sizes the nodal vectors
       }
-    else if (use_contact && parallel)
-      particle_handler->exchange_ghost_particles(true);
+    else
+      {
+        if (use_contact && parallel)
+          particle_handler->exchange_ghost_particles(true);
+        allocate_nodal_data();
+      }
     {
       std::vector<unsigned long long> per_body(parameters.bodies.size(), 0);
       for (const auto &particle : *particle_handler)
@@ -218,8 +222,6 @@ namespace sable::mpm
                     "a body large enough to hold at least one material point "
                     "on this grid");
     }
-
-    allocate_nodal_data();
 
     // the signal speed for the first time step, and an energy scale
     double max_speed = 0, mass_wave_speed2 = 0;
