@@ -173,9 +173,14 @@ namespace sable::qusgm
         sorted[fill[cell_of[i]]++] = i;
     }
 
+    if (partition.n_grains() != n)
+      partition = GrainPartition(pack, communicator);
+
+    // The contacts of this rank's grains: a pair of two own grains once,
+    // from its first grain; a pair with another rank's grain from ours.
     std::vector<Contact> new_pairs;
     new_pairs.reserve(pairs.size() + n);
-    for (unsigned int i = 0; i < n; ++i)
+    for (const unsigned int i : partition.owned_grains())
       {
         const auto c = cell_index(current[i]);
         for (int dz = -1; dz <= 1; ++dz)
@@ -192,15 +197,15 @@ namespace sable::qusgm
                      ++k)
                   {
                     const unsigned int j = sorted[k];
-                    if (j <= i)
+                    if (j == i || (j < i && partition.is_owned(j)))
                       continue;
                     const double gap = (current[i] - current[j]).norm() -
                                        pack.radius[i] - pack.radius[j];
                     if (gap < skin)
                       {
                         Contact contact{};
-                        contact.i     = i;
-                        contact.other = j;
+                        contact.i     = std::min(i, j);
+                        contact.other = std::max(i, j);
                         new_pairs.push_back(contact);
                       }
                   }
@@ -212,7 +217,7 @@ namespace sable::qusgm
     std::sort(new_pairs.begin(), new_pairs.end(), by_key);
 
     std::vector<Contact> new_walls;
-    for (unsigned int i = 0; i < n; ++i)
+    for (const unsigned int i : partition.owned_grains())
       for (unsigned int w = 0; w < 6; ++w)
         if (current_walls.overlap(w, current[i], pack.radius[i]) > -skin)
           {

@@ -123,8 +123,9 @@ namespace sable::qusgm
                                    out);
   }
 
-  void
-  write_contacts_vtu(const std::string    &filename,
+  std::string
+  write_contacts_vtu(const std::string    &directory,
+                     const std::string    &stem,
                      const Pack           &pack,
                      const Walls          &walls,
                      const ContactNetwork &network,
@@ -133,7 +134,7 @@ namespace sable::qusgm
     std::vector<dealii::DataOutBase::Patch<1, 3>> patches;
     auto add = [&](const Contact &c, const Point<3> &a, const Point<3> &b,
                    const double mu) {
-      if (c.p0 <= 0)
+      if (c.p0 <= 0 || !network.owns(c))
         return;
       dealii::DataOutBase::Patch<1, 3> patch;
       patch.vertices[0]    = a;
@@ -159,12 +160,33 @@ namespace sable::qusgm
         contact_point[Walls::axis(c.other)] = walls.position[c.other];
         add(c, pack.centre[c.i], contact_point, model.wall_friction);
       }
-    std::ofstream out(filename);
-    dealii::DataOutBase::write_vtu(patches,
-                                   {"normal_force", "tangential_force",
-                                    "friction_mobilisation"},
-                                   {},
-                                   dealii::DataOutBase::VtkFlags(),
-                                   out);
+    const std::vector<std::string> names = {"normal_force",
+                                            "tangential_force",
+                                            "friction_mobilisation"};
+    const GrainPartition &partition = network.get_partition();
+    const MPI_Comm        communicator = partition.get_communicator();
+    if (partition.n_ranks() == 1)
+      {
+        std::ofstream out(directory + "/" + stem + ".vtu");
+        dealii::DataOutBase::write_vtu(patches, names, {}, dealii::DataOutBase::VtkFlags(), out);
+        return stem + ".vtu";
+      }
+    const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(communicator);
+    const auto         piece = [&](const unsigned int r) {
+      return stem + "." + dealii::Utilities::int_to_string(r, 4) + ".vtu";
+    };
+    {
+      std::ofstream out(directory + "/" + piece(rank));
+      dealii::DataOutBase::write_vtu(patches, names, {}, dealii::DataOutBase::VtkFlags(), out);
+    }
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < partition.n_ranks(); ++r)
+          pieces.push_back(piece(r));
+        std::ofstream record(directory + "/" + stem + ".pvtu");
+        dealii::DataOutBase::write_pvtu_record(record, pieces, names, {}, dealii::DataOutBase::VtkFlags());
+      }
+    return stem + ".pvtu";
   }
 } // namespace sable::qusgm

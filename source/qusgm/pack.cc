@@ -75,8 +75,18 @@ namespace sable::qusgm
   void
   Pack::sort_spatially()
   {
+    permute(spatial_order());
+  }
+
+  std::vector<unsigned int>
+  Pack::spatial_order() const
+  {
+    std::vector<unsigned int> permutation(size());
     if (size() < 2)
-      return;
+      {
+        std::iota(permutation.begin(), permutation.end(), 0u);
+        return permutation;
+      }
     Point<3> lo = centre[0], hi = centre[0];
     for (const Point<3> &x : centre)
       for (unsigned int a = 0; a < 3; ++a)
@@ -105,10 +115,9 @@ namespace sable::qusgm
         keys[i] = {code, i};
       }
     std::sort(keys.begin(), keys.end());
-    std::vector<unsigned int> permutation(size());
     for (unsigned int k = 0; k < size(); ++k)
       permutation[k] = keys[k].second;
-    permute(permutation);
+    return permutation;
   }
 
   void

@@ -103,14 +103,16 @@ namespace sable::qusgm
   namespace
   {
     // Grow grains with fewer than the required contacts towards their
-    // next neighbour (or wall) so that they touch it. Returns how many
-    // grains grew.
+    // next neighbour (or wall) so that they touch it. Each rank grows its
+    // own grains (their contacts are all in its network) and the new radii
+    // go to every rank. Returns how many grains grew.
     unsigned int
     grow_grains(Simulation &sim, const PreparationSettings &settings,
                 const ContactState &state)
     {
-      Pack              &pack = sim.pack;
-      const unsigned int n    = pack.size();
+      Pack                 &pack      = sim.pack;
+      const unsigned int    n         = pack.size();
+      const GrainPartition &partition = sim.network.get_partition();
       // Surface gaps to candidate neighbours, per grain.
       std::vector<std::vector<double>> gaps(n);
       for (const Contact &c : sim.network.pairs)
@@ -123,20 +125,28 @@ namespace sable::qusgm
       for (const Contact &c : sim.network.wall_contacts)
         gaps[c.i].push_back(
           -sim.walls.overlap(c.other, pack.centre[c.i], pack.radius[c.i]));
-      // Mean overlap of the loaded contacts: grown grains press as hard.
-      double       mean_overlap = 0;
-      unsigned int n_overlaps   = 0;
-      for (const auto &g : gaps)
-        for (const double x : g)
+      // Mean overlap of the loaded contacts (each pair counted from both
+      // grains): grown grains press as hard. Summed per grain, then over
+      // the grains in order, so that any number of ranks gives one answer.
+      std::vector<double> overlaps(2 * std::size_t(n), 0.);
+      for (const unsigned int i : partition.owned_grains())
+        for (const double x : gaps[i])
           if (x < 0)
             {
-              mean_overlap -= x;
-              ++n_overlaps;
+              overlaps[2 * i] -= x;
+              overlaps[2 * i + 1] += 1;
             }
-      mean_overlap = n_overlaps ? mean_overlap / n_overlaps : 0.;
+      partition.gather(overlaps, 2);
+      double mean_overlap = 0, n_overlaps = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          mean_overlap += overlaps[2 * i];
+          n_overlaps += overlaps[2 * i + 1];
+        }
+      mean_overlap = n_overlaps > 0 ? mean_overlap / n_overlaps : 0.;
 
       unsigned int grown = 0;
-      for (unsigned int i = 0; i < n; ++i)
+      for (const unsigned int i : partition.owned_grains())
         if (state.coordination[i] < settings.min_coordination)
           {
             std::vector<double> &g = gaps[i];
@@ -148,7 +158,8 @@ namespace sable::qusgm
             pack.radius[i] += growth;
             ++grown;
           }
-      return grown;
+      partition.gather(pack.radius, 1);
+      return partition.sum(grown);
     }
   } // namespace
 

@@ -194,10 +194,8 @@ namespace sable::qusgm
   run_scene(const std::string &filename, MPI_Comm communicator)
   {
     const auto start = std::chrono::steady_clock::now();
-    check_input(dealii::Utilities::MPI::n_mpi_processes(communicator) == 1,
-                "number of MPI ranks",
-                dealii::Utilities::MPI::n_mpi_processes(communicator),
-                "1 (QuSGM runs on one rank)");
+    const bool root  = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+    const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(communicator);
 
     ParameterHandler prm;
     declare_common_parameters(prm);
@@ -417,34 +415,45 @@ namespace sable::qusgm
       }
     pack.check("Pack");
 
-    // --- Work and output.
-    std::filesystem::create_directories(output);
-    dealii::ConditionalOStream out(std::cout, true);
+    // --- Work and output. Every rank runs the whole scene (the grains'
+    // contacts are shared out, see GrainPartition); the first one writes.
+    if (root)
+      std::filesystem::create_directories(output);
+    MPI_Barrier(communicator);
+    dealii::ConditionalOStream out(std::cout, root);
     dealii::TimerOutput timer(out, dealii::TimerOutput::never,
                               dealii::TimerOutput::wall_times);
     out << "QuSGM scene " << filename << ": " << pack.size() << " grains, mu = "
         << model.friction << " (walls " << model.wall_friction << "), torsion "
         << (model.torsion ? "on" : "off") << ", minimiser " << method_name
-        << ", " << dealii::MultithreadInfo::n_threads() << " thread(s)" << std::endl;
+        << ", " << n_ranks << " MPI rank(s) x " << dealii::MultithreadInfo::n_threads()
+        << " thread(s)" << std::endl;
+    // The iteration log evaluates the contact state, which every rank
+    // takes part in, so the other ranks log to nowhere.
     std::ofstream log_file;
-    if (iteration_log)
+    std::ostream  no_log(nullptr);
+    if (iteration_log && root)
       log_file.open(output + "/iterations.log");
 
-    Simulation sim(pack, walls, model, settings, out, &timer);
+    Simulation sim(pack, walls, model, settings, out, &timer, communicator);
     sim.axis = path.axis;
-    sim.open_table(output + "/increments.csv");
+    if (root)
+      sim.open_table(output + "/increments.csv");
     if (iteration_log)
-      sim.iteration_log = &log_file;
+      sim.iteration_log = root ? static_cast<std::ostream *>(&log_file) : &no_log;
     std::vector<std::pair<double, std::string>> vtu_records, contact_records;
     auto write_vtu = [&](const unsigned int increment) {
       dealii::TimerOutput::Scope scope(timer, "output");
       const std::string name =
         "grains-" + dealii::Utilities::int_to_string(increment, 5) + ".vtu";
-      write_grains_vtu(output + "/" + name, sim.pack, sim.current_state());
-      const std::string contacts =
-        "contacts-" + dealii::Utilities::int_to_string(increment, 5) + ".vtu";
-      write_contacts_vtu(output + "/" + contacts, sim.pack, sim.walls,
-                         sim.network, sim.model);
+      const ContactState state = sim.current_state();
+      const std::string  contacts =
+        write_contacts_vtu(output,
+                           "contacts-" + dealii::Utilities::int_to_string(increment, 5),
+                           sim.pack, sim.walls, sim.network, sim.model);
+      if (!root)
+        return;
+      write_grains_vtu(output + "/" + name, sim.pack, state);
       vtu_records.emplace_back(increment, name);
       contact_records.emplace_back(increment, contacts);
       std::ofstream pvd(output + "/grains.pvd");
@@ -461,7 +470,8 @@ namespace sable::qusgm
             << preparation.min_coordination << " contacts, then friction activation"
             << std::endl;
         prepare_pack(sim, model, preparation);
-        write_pack(sim.pack, output + "/prepared_pack.csv");
+        if (root)
+          write_pack(sim.pack, output + "/prepared_pack.csv");
       }
     sim.reset_undeformed();
     if (vtu_all || vtu_increments.count(0))
@@ -474,7 +484,8 @@ namespace sable::qusgm
         if (vtu_all || vtu_increments.count(k) || (vtu_last && k == path.n_increments))
           write_vtu(k);
       }
-    write_pack(sim.pack, output + "/final_pack.csv");
+    if (root)
+      write_pack(sim.pack, output + "/final_pack.csv");
 
     timer.print_summary();
     const double seconds =

@@ -12,14 +12,17 @@ namespace sable::qusgm
                          const ContactModel         &model,
                          const MinimizerSettings    &settings,
                          dealii::ConditionalOStream &out,
-                         dealii::TimerOutput        *timer)
+                         dealii::TimerOutput        *timer,
+                         const MPI_Comm              communicator)
     : pack(pack)
     , walls(walls)
     , model(model)
     , settings(settings)
+    , communicator(communicator)
     , out(out)
     , timer(timer)
   {
+    network.set_communicator(communicator);
     reset_undeformed();
   }
 
@@ -49,6 +52,7 @@ namespace sable::qusgm
   {
     last_theta.reinit(0);
     network = ContactNetwork();
+    network.set_communicator(communicator);
     network.build(pack,
                   walls,
                   pack.centre,

@@ -130,24 +130,31 @@ namespace sable::qusgm
     const unsigned int rot      = 3 * n;
     const bool         friction = model.frictional();
     const bool         torsion  = friction && model.torsion;
+    // With a ContactState: per grain the normal forces on the six walls
+    // and the sum of its contacts' normal forces (a pair's counts for its
+    // first grain), summed over the grains in grain order at the end.
     if (state)
-      state->coordination.assign(n, 0);
-
-    // Contacts in fixed chunks of chunk_size: each chunk sums its share of
-    // Pi in contact order, each contact stores its gradient contributions,
-    // and the grains gather them in a fixed order. The result is the same
-    // for any number of threads (bit for bit). With a ContactState the
-    // chunks run one after the other (the counts are shared).
-    const std::size_t n_pairs       = network.pairs.size();
-    const std::size_t n_walls       = network.wall_contacts.size();
-    const std::size_t n_pair_chunks = (n_pairs + chunk_size - 1) / chunk_size;
-    const std::size_t n_wall_chunks = (n_walls + chunk_size - 1) / chunk_size;
-    chunk_sums.assign(n_pair_chunks + n_wall_chunks, ChunkSums());
-    if (with_gradient)
       {
-        pair_results.resize(n_pairs);
-        wall_results.resize(n_walls);
+        state->coordination.assign(n, 0);
+        grain_loads.assign(std::size_t(n) * 7, 0.);
       }
+
+    // Contacts in chunks: each contact stores its energy and gradient
+    // contributions, then every grain gathers its contacts' in contact
+    // order and Pi is summed over the grains in grain order. The result is
+    // the same for any number of threads and of MPI ranks (bit for bit):
+    // a rank gathers its own grains, which hold all their contacts, and
+    // the per-grain sums go to every rank. A contact's energy counts for
+    // its first grain. With a ContactState the chunks run one after the
+    // other (the counts are shared).
+    const GrainPartition &partition     = network.get_partition();
+    const std::size_t     n_pairs       = network.pairs.size();
+    const std::size_t     n_walls       = network.wall_contacts.size();
+    const std::size_t     n_pair_chunks = (n_pairs + chunk_size - 1) / chunk_size;
+    const std::size_t     n_wall_chunks = (n_walls + chunk_size - 1) / chunk_size;
+    chunk_sums.assign(n_pair_chunks + n_wall_chunks, ChunkSums());
+    pair_results.resize(n_pairs);
+    wall_results.resize(n_walls);
 
     // Grain-grain contacts k in [begin, end).
     const auto pair_chunk = [&](const std::size_t begin,
@@ -163,7 +170,7 @@ namespace sable::qusgm
           const double d  = r.norm();
           const double h  = pack.radius[i] + pack.radius[j] - d;
           const double h0 = c.h0;
-          sums.pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, h0);
+          double       energy = hertz_energy(c.k_n, h) - hertz_energy(c.k_n, h0);
           const Tensor<1, 3> n_ij = r / d;
           Tensor<1, 3>       force_i; // force on i
           Tensor<1, 3>       g;       // dW/dn at fixed u, Omega
@@ -179,12 +186,15 @@ namespace sable::qusgm
                 }
               if (state)
                 {
-                  ++state->n_contacts;
-                  ++state->n_grain_contacts;
-                  ++state->coordination[i];
-                  ++state->coordination[j];
+                  if (network.owns(c))
+                    {
+                      ++state->n_contacts;
+                      ++state->n_grain_contacts;
+                      grain_loads[7 * std::size_t(i) + 6] += p;
+                    }
+                  state->coordination[i] += partition.is_owned(i);
+                  state->coordination[j] += partition.is_owned(j);
                   state->max_contact_force = std::max(state->max_contact_force, p);
-                  sums.sum_p += p;
                 }
             }
           if (friction && c.p0 > 0 && c.k_s > 0)
@@ -209,9 +219,9 @@ namespace sable::qusgm
 
               const Tensor<1, 3> y = q_p - c.k_s * u_s;
               const Tensor<1, 3> q = capped_force(y, c.q_max);
-              sums.pi -= (capped_potential(q_p, c.q_max) - capped_potential(y, c.q_max)) /
-                         c.k_s;
-              if (state && h > 0 && y.norm() > c.q_max)
+              energy -= (capped_potential(q_p, c.q_max) - capped_potential(y, c.q_max)) /
+                        c.k_s;
+              if (state && h > 0 && y.norm() > c.q_max && network.owns(c))
                 ++state->n_sliding;
               if (q_out)
                 (*q_out)[k] = q;
@@ -239,9 +249,9 @@ namespace sable::qusgm
                   const double       omega_t = d_omega * n_ij;
                   const double       y_t     = c.m0 - c.k_t * omega_t;
                   const double       m       = capped_force(y_t, c.m_max);
-                  sums.pi -= (capped_potential(c.m0, c.m_max) -
-                              capped_potential(y_t, c.m_max)) /
-                             c.k_t;
+                  energy -= (capped_potential(c.m0, c.m_max) -
+                             capped_potential(y_t, c.m_max)) /
+                            c.k_t;
                   if (m_out)
                     (*m_out)[k] = m;
                   if (with_gradient)
@@ -258,12 +268,13 @@ namespace sable::qusgm
                   force_i += force_t;
                 }
             }
+          PairResult &result = pair_results[k];
+          result.energy      = energy;
           if (with_gradient)
             {
-              PairResult &result = pair_results[k];
-              result.force       = force_i;
-              result.rotation_i  = (-1. / pack.radius[i]) * moment_i;
-              result.rotation_j  = (-1. / pack.radius[j]) * moment_j;
+              result.force      = force_i;
+              result.rotation_i = (-1. / pack.radius[i]) * moment_i;
+              result.rotation_j = (-1. / pack.radius[j]) * moment_j;
             }
         }
     };
@@ -282,7 +293,7 @@ namespace sable::qusgm
           const Tensor<1, 3> u_i = block(theta, 3 * i);
           const double       h =
             walls.overlap(w, pack.centre[i] + u_i, pack.radius[i]);
-          sums.pi += hertz_energy(c.k_n, h) - hertz_energy(c.k_n, c.h0);
+          double energy = hertz_energy(c.k_n, h) - hertz_energy(c.k_n, c.h0);
           Tensor<1, 3> gradient_i, moment_i;
           if (h > 0)
             {
@@ -293,13 +304,13 @@ namespace sable::qusgm
                   sums.max_p  = std::max(sums.max_p, p);
                   sums.max_dp = std::max(sums.max_dp, std::abs(p - c.p0));
                 }
-              if (state)
+              if (state) // wall contacts are held by the grain's rank only
                 {
                   ++state->n_contacts;
                   ++state->coordination[i];
-                  state->wall_force[w] += p;
+                  grain_loads[7 * std::size_t(i) + w] += p;
+                  grain_loads[7 * std::size_t(i) + 6] += p;
                   state->max_contact_force = std::max(state->max_contact_force, p);
-                  sums.sum_p += p;
                 }
             }
           if (friction && c.p0 > 0 && c.k_s > 0)
@@ -311,8 +322,8 @@ namespace sable::qusgm
                                  c.lever_i * dealii::cross_product_3d(omega_i, n_w);
               const Tensor<1, 3> y = c.q0 - c.k_s * u_s;
               const Tensor<1, 3> q = capped_force(y, c.q_max);
-              sums.pi -= (capped_potential(c.q0, c.q_max) - capped_potential(y, c.q_max)) /
-                         c.k_s;
+              energy -= (capped_potential(c.q0, c.q_max) - capped_potential(y, c.q_max)) /
+                        c.k_s;
               if (state && h > 0 && y.norm() > c.q_max)
                 ++state->n_sliding;
               if (q_out)
@@ -327,15 +338,16 @@ namespace sable::qusgm
                   const double omega_t = omega_i * n_w;
                   const double y_t     = c.m0 - c.k_t * omega_t;
                   const double m       = capped_force(y_t, c.m_max);
-                  sums.pi -= (capped_potential(c.m0, c.m_max) -
-                              capped_potential(y_t, c.m_max)) /
-                             c.k_t;
+                  energy -= (capped_potential(c.m0, c.m_max) -
+                             capped_potential(y_t, c.m_max)) /
+                            c.k_t;
                   if (m_out)
                     (*m_out)[n_pairs + k] = m;
                   if (with_gradient)
                     moment_i += m * n_w;
                 }
             }
+          wall_results[k].energy = energy;
           if (with_gradient)
             {
               wall_results[k].gradient = gradient_i;
@@ -363,71 +375,109 @@ namespace sable::qusgm
     else
       run_chunks(0, chunk_sums.size());
 
-    double pi = 0, sum_p = 0, max_p = 0, max_dp = 0;
+    double max_p = 0, max_dp = 0;
     for (const ChunkSums &sums : chunk_sums)
       {
-        pi += sums.pi;
-        sum_p += sums.sum_p;
         max_p  = std::max(max_p, sums.max_p);
         max_dp = std::max(max_dp, sums.max_dp);
       }
 
-    // Weight, along -z.
-    if (model.gravity)
-      for (unsigned int i = 0; i < n; ++i)
-        pi += pack.mass(i) * model.gravity_acceleration * theta[3 * i + 2];
-
-    if (with_gradient)
-      {
-        // Each grain gathers its contacts' contributions in contact order.
-        update_incidence();
-        const std::size_t two_pairs = 2 * n_pairs;
-        const auto        gather    = [&](const unsigned int begin, const unsigned int end) {
-          for (unsigned int i = begin; i < end; ++i)
+    // Each own grain gathers its contacts' contributions in contact order:
+    // per grain [dPi/du, dPi/d(Omega R), its share of Pi] with a gradient,
+    // else only the share of Pi.
+    update_incidence();
+    const unsigned int components = with_gradient ? 7 : 1;
+    grain_values.resize(std::size_t(n) * components);
+    const std::size_t                two_pairs = 2 * n_pairs;
+    const std::vector<unsigned int> &owned     = partition.owned_grains();
+    const auto gather = [&](const unsigned int begin, const unsigned int end) {
+      for (unsigned int k = begin; k < end; ++k)
+        {
+          const unsigned int i = owned[k];
+          Tensor<1, 3>       g_u, g_rot;
+          double             energy = 0;
+          for (unsigned int e = incidence_start[i]; e < incidence_start[i + 1]; ++e)
             {
-              Tensor<1, 3> g_u, g_rot;
-              for (unsigned int e = incidence_start[i]; e < incidence_start[i + 1]; ++e)
+              const std::size_t entry = incidence[e];
+              if (entry < two_pairs)
                 {
-                  const std::size_t entry = incidence[e];
-                  if (entry < two_pairs)
+                  const PairResult &result = pair_results[entry / 2];
+                  if (entry % 2 == 0)
                     {
-                      const PairResult &result = pair_results[entry / 2];
-                      if (entry % 2 == 0)
-                        {
-                          g_u -= result.force;
-                          g_rot += result.rotation_i;
-                        }
-                      else
-                        {
-                          g_u += result.force;
-                          g_rot += result.rotation_j;
-                        }
+                      energy += result.energy;
+                      g_u -= result.force;
+                      g_rot += result.rotation_i;
                     }
                   else
                     {
-                      const WallResult &result = wall_results[entry - two_pairs];
-                      g_u += result.gradient;
-                      g_rot += result.rotation;
+                      g_u += result.force;
+                      g_rot += result.rotation_j;
                     }
                 }
-              if (model.gravity)
-                g_u[2] += pack.mass(i) * model.gravity_acceleration;
-              for (unsigned int d = 0; d < 3; ++d)
+              else
                 {
-                  (*gradient)[3 * i + d]       = g_u[d];
-                  (*gradient)[rot + 3 * i + d] = g_rot[d];
+                  const WallResult &result = wall_results[entry - two_pairs];
+                  energy += result.energy;
+                  g_u += result.gradient;
+                  g_rot += result.rotation;
                 }
             }
-        };
-        if (state == nullptr)
-          dealii::parallel::apply_to_subranges(0u, n, gather, 64);
-        else
-          gather(0, n);
-        last_max_contact_force = max_p;
-        last_max_force_change  = max_dp;
+          if (model.gravity) // weight, along -z
+            {
+              energy += pack.mass(i) * model.gravity_acceleration * theta[3 * i + 2];
+              g_u[2] += pack.mass(i) * model.gravity_acceleration;
+            }
+          double *values = &grain_values[std::size_t(i) * components];
+          if (with_gradient)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                values[d]     = g_u[d];
+                values[3 + d] = g_rot[d];
+              }
+          values[components - 1] = energy;
+        }
+    };
+    if (state == nullptr)
+      dealii::parallel::apply_to_subranges(0u, static_cast<unsigned int>(owned.size()), gather, 64);
+    else
+      gather(0, owned.size());
+    partition.gather(grain_values, components);
+
+    double pi = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double *values = &grain_values[std::size_t(i) * components];
+        pi += values[components - 1];
+        if (with_gradient)
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              (*gradient)[3 * i + d]       = values[d];
+              (*gradient)[rot + 3 * i + d] = values[3 + d];
+            }
       }
-    if (state && state->n_contacts > 0)
-      state->mean_normal_force = sum_p / state->n_contacts;
+    if (with_gradient)
+      {
+        last_max_contact_force = partition.max(max_p);
+        last_max_force_change  = partition.max(max_dp);
+      }
+    if (state)
+      {
+        state->n_contacts       = partition.sum(state->n_contacts);
+        state->n_grain_contacts = partition.sum(state->n_grain_contacts);
+        state->n_sliding        = partition.sum(state->n_sliding);
+        state->max_contact_force = partition.max(state->max_contact_force);
+        partition.sum(state->coordination);
+        partition.gather(grain_loads, 7);
+        double sum_p = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            for (unsigned int w = 0; w < 6; ++w)
+              state->wall_force[w] += grain_loads[7 * std::size_t(i) + w];
+            sum_p += grain_loads[7 * std::size_t(i) + 6];
+          }
+        if (state->n_contacts > 0)
+          state->mean_normal_force = sum_p / state->n_contacts;
+      }
     return pi;
   }
 

@@ -4,6 +4,7 @@
 #ifndef sable_qusgm_contact_network_h
 #define sable_qusgm_contact_network_h
 
+#include <sable/qusgm/grain_partition.h>
 #include <sable/qusgm/pack.h>
 
 #include <cstdint>
@@ -58,12 +59,40 @@ namespace sable::qusgm
    * O(N). `pairs` holds grain-grain contacts (i < other), `wall_contacts`
    * grain-wall contacts; both sorted by key, so that rebuilding carries the
    * reference loads over by pair.
+   *
+   * With more than one MPI rank, a network holds the contacts of the
+   * grains its rank owns (see GrainPartition): a pair across two ranks is
+   * held by both.
    */
   class ContactNetwork
   {
   public:
     std::vector<Contact> pairs;
     std::vector<Contact> wall_contacts;
+
+    /// Distribute the grains over the ranks of @p communicator from the
+    /// next build() on (default: MPI_COMM_SELF, all grains on one rank).
+    void
+    set_communicator(const MPI_Comm new_communicator)
+    {
+      communicator = new_communicator;
+      partition    = GrainPartition();
+    }
+
+    /// Who owns which grain; set by build() for the pack it is given.
+    const GrainPartition &
+    get_partition() const
+    {
+      return partition;
+    }
+
+    /// True if this rank holds the contact's energy, counts and loads in
+    /// sums over the whole pack (the rank of its first grain).
+    bool
+    owns(const Contact &c) const
+    {
+      return partition.is_owned(c.i);
+    }
 
     /**
      * Find every grain pair and grain-wall pair closer than @p skin at the
@@ -108,6 +137,8 @@ namespace sable::qusgm
 
     std::vector<Point<3>> positions_at_build;
     Walls                 walls_at_build;
+    MPI_Comm              communicator = MPI_COMM_SELF;
+    GrainPartition        partition;
   };
 } // namespace sable::qusgm
 

@@ -74,9 +74,15 @@ namespace sable::qusgm
    * (VTU): grain centre to grain centre, or to the wall contact point, with
    * the normal force P, the tangential force |Q| and its mobilisation
    * |Q| / (mu P) (1: sliding).
+   *
+   * Collective over the network's ranks: @p stem.vtu on one rank; with
+   * more, every rank writes the contacts it owns to @p stem.RRRR.vtu and
+   * the first the record @p stem.pvtu. Returns the name to list in a .pvd
+   * record (relative to @p directory).
    */
-  void
-  write_contacts_vtu(const std::string    &filename,
+  std::string
+  write_contacts_vtu(const std::string    &directory,
+                     const std::string    &stem,
                      const Pack           &pack,
                      const Walls          &walls,
                      const ContactNetwork &network,

@@ -62,6 +62,11 @@ namespace sable::qusgm
     void
     sort_spatially();
 
+    /// The order of sort_spatially(): position k holds the grain that
+    /// comes k-th along the Morton curve.
+    std::vector<unsigned int>
+    spatial_order() const;
+
     /// Throw InputError (naming @p source) unless every grain is valid.
     void
     check(const std::string &source) const;

@@ -30,12 +30,19 @@ namespace sable::qusgm
   class Simulation
   {
   public:
+    /**
+     * With a @p communicator of more than one rank, the grains are
+     * distributed over its ranks (see GrainPartition); every rank then
+     * calls every member function, in the same order. Only the caller
+     * decides which rank writes the table and the logs.
+     */
     Simulation(const Pack              &pack,
                const Walls             &walls,
                const ContactModel      &model,
                const MinimizerSettings &settings,
                dealii::ConditionalOStream &out,
-               dealii::TimerOutput        *timer = nullptr);
+               dealii::TimerOutput        *timer        = nullptr,
+               MPI_Comm                    communicator = MPI_COMM_SELF);
 
     /// Switch contact model (e.g. frictionless preparation to friction).
     void
@@ -78,6 +85,7 @@ namespace sable::qusgm
     std::ostream         *iteration_log = nullptr;
 
   private:
+    MPI_Comm                         communicator;
     dealii::ConditionalOStream      &out;
     dealii::TimerOutput             *timer;
     std::shared_ptr<IncrementTable>  table; // shared by copies

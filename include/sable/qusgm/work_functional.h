@@ -122,22 +122,28 @@ namespace sable::qusgm
     static constexpr std::size_t chunk_size = 128;
     struct ChunkSums
     {
-      double pi = 0, sum_p = 0, max_p = 0, max_dp = 0;
+      double max_p = 0, max_dp = 0;
     };
-    /// Gradient contributions of a grain-grain contact: -force to grain
-    /// i's and +force to grain j's displacement block, rotation_i and
-    /// rotation_j to their rotation blocks.
+    /// Energy and gradient contributions of a grain-grain contact: -force
+    /// to grain i's and +force to grain j's displacement block, rotation_i
+    /// and rotation_j to their rotation blocks.
     struct PairResult
     {
+      double       energy;
       Tensor<1, 3> force, rotation_i, rotation_j;
     };
     struct WallResult
     {
+      double       energy;
       Tensor<1, 3> gradient, rotation;
     };
     mutable std::vector<ChunkSums>  chunk_sums;
     mutable std::vector<PairResult> pair_results;
     mutable std::vector<WallResult> wall_results;
+    /// per grain: gradient blocks and share of Pi (see evaluate())
+    mutable std::vector<double> grain_values;
+    /// per grain: normal forces on the walls and sum of normal forces
+    mutable std::vector<double> grain_loads;
     /// grain i's contacts: incidence[incidence_start[i] .. incidence_start[i+1]),
     /// 2k / 2k+1 for grain i / j of pair k, 2 n_pairs + k for wall contact k;
     /// rebuilt when the network's n_builds or sizes change
