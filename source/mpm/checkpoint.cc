@@ -4,19 +4,16 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <sable/base/checkpoint_directory.h>
 #include <sable/mpm/checkpoint.h>
 #include <sable/mpm/simulator.h>
 
 #include <boost/archive/text_iarchive.hpp>
 #include <boost/archive/text_oarchive.hpp>
-#include <boost/crc.hpp>
 #include <boost/serialization/map.hpp>
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -32,94 +29,15 @@ namespace sable::mpm
   {
     namespace fs = std::filesystem;
 
-    const char *const manifest_header = "sable checkpoint manifest 1";
-    const char *const state_file      = "simulator.state";
-    const char *const mesh_file       = "triangulation";
-
-    /// Run @p work on rank 0; an exception there is thrown on every rank.
-    void
-    on_root(MPI_Comm communicator, const std::function<void()> &work)
-    {
-      std::string error;
-      if (Utilities::MPI::this_mpi_process(communicator) == 0)
-        try
-          {
-            work();
-          }
-        catch (const std::exception &e)
-          {
-            error = e.what();
-            if (error.empty())
-              error = "unknown error";
-          }
-      error = Utilities::MPI::broadcast(communicator, error, 0);
-      if (!error.empty())
-        throw std::runtime_error(error);
-    }
+    const char *const state_file = "simulator.state";
+    const char *const mesh_file  = "triangulation";
+    const std::vector<std::string> required_files = {state_file, mesh_file};
 
     void
     require(const bool condition, const std::string &message)
     {
       if (!condition)
         throw std::runtime_error(message);
-    }
-
-    /// CRC-32 of a file; also flushes it to the disk.
-    std::uint32_t
-    file_checksum(const fs::path &path)
-    {
-      std::ifstream in(path, std::ios::binary);
-      if (!in)
-        throw std::runtime_error("cannot read '" + path.string() + "'");
-      boost::crc_32_type crc;
-      std::vector<char>  buffer(1 << 20);
-      while (in)
-        {
-          in.read(buffer.data(), buffer.size());
-          crc.process_bytes(buffer.data(), in.gcount());
-        }
-      return crc.checksum();
-    }
-
-    /// fsync a file or directory (best effort).
-    void
-    sync(const fs::path &path)
-    {
-      const int fd = ::open(path.c_str(), O_RDONLY);
-      if (fd >= 0)
-        {
-          ::fsync(fd);
-          ::close(fd);
-        }
-    }
-
-    /// The manifest of every regular file in @p directory, written last.
-    void
-    write_manifest(const fs::path &directory)
-    {
-      std::vector<fs::path> files;
-      for (const auto &entry : fs::directory_iterator(directory))
-        if (entry.is_regular_file() && entry.path().filename() != "manifest")
-          files.push_back(entry.path());
-      std::sort(files.begin(), files.end());
-      std::ostringstream text;
-      text << manifest_header << '\n' << files.size() << '\n';
-      for (const fs::path &file : files)
-        {
-          text << fs::file_size(file) << ' ' << std::hex << file_checksum(file) << std::dec
-               << ' ' << file.filename().string() << '\n';
-          sync(file);
-        }
-      text << "end\n";
-      {
-        std::ofstream out(directory / "manifest");
-        out << text.str();
-        out.close();
-        if (!out)
-          throw std::runtime_error("cannot write '" + (directory / "manifest").string() + "'");
-      }
-      sync(directory / "manifest");
-      sync(directory);
     }
 
     /// Everything of the Simulator that is not in the mesh or the particles.
@@ -195,73 +113,11 @@ namespace sable::mpm
                         const unsigned int interval,
                         const bool         ends_here)
     {
-      std::ifstream      in(path);
-      std::ostringstream kept;
-      std::string        line;
-      if (std::getline(in, line))
-        kept << line << '\n';
-      while (std::getline(in, line))
-        {
-          if (line.empty())
-            continue;
-          const unsigned long row_step = std::stoul(line.substr(0, line.find(',')));
-          if (row_step < step || (row_step == step && (step % interval == 0 || ends_here)))
-            kept << line << '\n';
-        }
-      in.close();
-      const fs::path tmp = path.string() + ".tmp";
-      {
-        std::ofstream out(tmp);
-        out << kept.str();
-        out.close();
-        if (!out)
-          throw std::runtime_error("cannot write '" + tmp.string() + "'");
-      }
-      fs::rename(tmp, path);
+      keep_table_rows(path.string(), [&](const unsigned long row_step) {
+        return row_step < step || (row_step == step && (step % interval == 0 || ends_here));
+      });
     }
   } // namespace
-
-
-  std::string
-  checkpoint_problem(const std::string &directory, const bool verify_checksums)
-  {
-    const fs::path path(directory);
-    if (!fs::is_directory(path))
-      return "does not exist";
-    std::ifstream manifest(path / "manifest");
-    if (!manifest)
-      return "has no manifest (the write did not finish)";
-    std::string header;
-    std::getline(manifest, header);
-    unsigned int n_files = 0;
-    if (header != manifest_header || !(manifest >> n_files))
-      return "has an unreadable manifest";
-    bool has_state = false, has_mesh = false;
-    for (unsigned int i = 0; i < n_files; ++i)
-      {
-        std::uintmax_t size = 0;
-        std::uint32_t  crc  = 0;
-        std::string    name;
-        if (!(manifest >> size >> std::hex >> crc >> std::dec >> name))
-          return "has an unreadable manifest";
-        const fs::path file = path / name;
-        if (!fs::is_regular_file(file))
-          return "misses the file " + name;
-        if (fs::file_size(file) != size)
-          return "has the file " + name + " of " + std::to_string(fs::file_size(file)) +
-                 " bytes instead of " + std::to_string(size);
-        if (verify_checksums && file_checksum(file) != crc)
-          return "has the file " + name + " with a wrong checksum";
-        has_state = has_state || name == state_file;
-        has_mesh  = has_mesh || name == mesh_file;
-      }
-    std::string end;
-    if (!(manifest >> end) || end != "end")
-      return "has an unreadable manifest";
-    if (!has_state || !has_mesh)
-      return "misses the simulator state or the mesh";
-    return "";
-  }
 
 
   std::string
@@ -269,30 +125,11 @@ namespace sable::mpm
                   MPI_Comm           communicator,
                   std::ostream &     log)
   {
-    std::string chosen;
-    on_root(communicator, [&]() {
-      const fs::path           base = fs::path(output_directory) / checkpoint_name;
-      std::vector<std::string> found;
-      for (const std::string &candidate : {base.string(), base.string() + ".old"})
-        {
-          const std::string problem = checkpoint_problem(candidate);
-          if (problem.empty())
-            {
-              chosen = candidate;
-              break;
-            }
-          found.push_back("'" + candidate + "' " + problem);
-        }
-      if (chosen.empty())
-        throw std::runtime_error("cannot resume: no complete checkpoint in the output directory '" +
-                                 output_directory + "' (" + found[0] + "; " + found[1] +
-                                 "). Checkpoints are written with 'Output/Checkpoint "
-                                 "interval' > 0.");
-      if (!found.empty())
-        log << "Note: the checkpoint " << found[0] << "; resuming from '" << chosen
-            << "' instead." << std::endl;
-    });
-    return Utilities::MPI::broadcast(communicator, chosen, 0);
+    return sable::find_checkpoint(output_directory,
+                                  required_files,
+                                  "'Output/Checkpoint interval' > 0",
+                                  communicator,
+                                  log);
   }
 
 
@@ -309,7 +146,6 @@ namespace sable::mpm
       directory_name.empty() ? fs::path(parameters.output_directory) / checkpoint_name :
                                fs::path(directory_name);
     const fs::path tmp = directory.string() + ".tmp";
-    const fs::path old = directory.string() + ".old";
     on_root(communicator, [&]() {
       fs::remove_all(tmp);
       fs::create_directories(tmp);
@@ -365,20 +201,8 @@ namespace sable::mpm
         if (!out)
           throw std::runtime_error("cannot write '" + (tmp / state_file).string() + "'");
       }
-      write_manifest(tmp);
-      // the set is complete: swap it in, keeping the previous complete one
-      // until then (an incomplete 'directory', left by an earlier failure,
-      // must not replace a complete 'old'; sizes suffice to tell)
-      if (checkpoint_problem(directory.string(), false).empty())
-        {
-          fs::remove_all(old);
-          fs::rename(directory, old);
-        }
-      else
-        fs::remove_all(directory);
-      fs::rename(tmp, directory);
-      sync(directory.parent_path().empty() ? fs::path(".") : directory.parent_path());
-      fs::remove_all(old);
+      write_manifest(tmp.string());
+      publish_checkpoint(tmp.string(), directory.string(), required_files);
     });
   }
 

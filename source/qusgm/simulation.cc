@@ -27,6 +27,14 @@ namespace sable::qusgm
   }
 
   void
+  Simulation::set_communicator(const MPI_Comm new_communicator)
+  {
+    communicator = new_communicator;
+    network.set_communicator(communicator);
+    network.build(pack, walls, pack.centre, walls, model, settings.skin * pack.mean_radius());
+  }
+
+  void
   Simulation::set_model(const ContactModel &new_model)
   {
     model = new_model;

@@ -8,12 +8,17 @@
 //   qusgm_benchmark validation <cache dir> N [sigma_c of stage (a) in Pa]
 //   qusgm_benchmark dem <cache dir> N
 //   qusgm_benchmark threads <cache dir> N [max threads = 2]
+//   mpirun -np P qusgm_benchmark ranks <cache dir> N
 //
 // threads: the time of one evaluation of Pi and grad Pi (mean of 200, at
 // the affine guess of a uniaxial increment of 1e-4) and of one increment
 // (L-BFGS, force test 1e-4) with 1, 2, ... threads, and whether the
 // results are bit-identical to the one-thread results
 // (contrib/benchmarks/scaling/run.sh runs it).
+//
+// ranks: the same two timings with the grains distributed over the P ranks
+// (one thread each), and Pi, |grad Pi| and the increment's stress change
+// printed to 17 digits, for comparison with a run on another rank count.
 //
 // validation: from the compacted pack, for mu = 0.3, 0.5 and 0, friction
 // activation by uniaxial strain until the sliding ratio saturates, then
@@ -326,6 +331,45 @@ namespace
       }
   }
 
+  // Ranks: the grains of @p start distributed over MPI_COMM_WORLD.
+  void
+  rank_scaling(Simulation start)
+  {
+    const unsigned int n = start.pack.size();
+    start.set_communicator(MPI_COMM_WORLD);
+    WorkFunctional f(start.pack, start.network, start.model);
+    Walls          walls = start.walls;
+    const auto     move  = LoadPath::wall_moves({{0, 0, 1e-4}}, start.undeformed_lengths);
+    dealii::Vector<double> theta(6 * n), gradient(6 * n);
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int i = 0; i < n; ++i)
+        theta[3 * i + a] = move[a] + (move[a + 3] - move[a]) *
+                                       (start.pack.centre[i][a] - walls.position[a]) /
+                                       walls.length(a);
+    for (unsigned int w = 0; w < 6; ++w)
+      walls.position[w] += move[w];
+    f.set_walls(walls);
+    double pi = f.value_and_gradient(theta, gradient); // warm-up
+    MPI_Barrier(MPI_COMM_WORLD);
+    const unsigned int repeats = 200;
+    const auto         t0      = std::chrono::steady_clock::now();
+    for (unsigned int k = 0; k < repeats; ++k)
+      pi = f.value_and_gradient(theta, gradient);
+    const double evaluation =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / repeats;
+    MPI_Barrier(MPI_COMM_WORLD);
+    const Outcome o = run(start, lbfgs(1e-4), 1e-4);
+    const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    unsigned int       held  = start.network.pairs.size() + start.network.wall_contacts.size();
+    const unsigned int most  = dealii::Utilities::MPI::max(held, MPI_COMM_WORLD);
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::cout << "ranks,contacts_on_busiest_rank,evaluation_ms,increment_s,iterations,pi,"
+                   "gradient_norm,stress_change_z\n"
+                << ranks << ',' << most << ',' << 1e3 * evaluation << ',' << o.seconds << ','
+                << o.result.iterations << ',' << std::setprecision(17) << pi << ','
+                << gradient.l2_norm() << ',' << o.d_stress[2] << std::endl;
+  }
+
   void
   print(const std::string &name, const Outcome &o, const Outcome &ref,
         const unsigned int n, const double d_eps)
@@ -348,10 +392,15 @@ main(int argc, char **argv)
   sable::set_threads(1);
   if (argc < 4)
     {
-      std::cerr << "Usage: qusgm_benchmark scaling|accuracy|threads <cache dir> N...\n";
+      std::cerr << "Usage: qusgm_benchmark scaling|accuracy|validation|dem|threads|ranks <cache dir> N...\n";
       return 1;
     }
   const std::string mode = argv[1], cache = argv[2];
+  if (mode == "ranks")
+    {
+      rank_scaling(prepared(std::stoi(argv[3]), cache));
+      return 0;
+    }
   if (mode == "threads")
     {
       const Simulation start = prepared(std::stoi(argv[3]), cache);

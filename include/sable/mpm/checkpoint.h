@@ -21,23 +21,9 @@ namespace sable::mpm
    *   boost text archive written by rank 0;
    * - `manifest`: written last, the size and CRC-32 of every other file.
    *
-   * A checkpoint is written into `<name>.tmp`; then the previous `<name>` is
-   * renamed to `<name>.old`, `<name>.tmp` to `<name>`, and `<name>.old` is
-   * removed. Whatever moment a run is stopped at, `<name>` or `<name>.old`
-   * holds a complete checkpoint; find_checkpoint() picks it.
+   * It is written and swapped in as sable/base/checkpoint_directory.h
+   * describes.
    */
-
-  /// Directory name of the checkpoint inside the output directory.
-  inline const char *const checkpoint_name = "checkpoint";
-
-  /**
-   * What is wrong with the checkpoint in @p directory (missing, no
-   * manifest, a file missing, of the wrong size or, with
-   * @p verify_checksums, with the wrong checksum), or an empty string if it
-   * is complete. Checksums mean reading every file.
-   */
-  std::string
-  checkpoint_problem(const std::string &directory, const bool verify_checksums = true);
 
   /**
    * The checkpoint to resume the run in @p output_directory from:

@@ -44,6 +44,11 @@ namespace sable::qusgm
                dealii::TimerOutput        *timer        = nullptr,
                MPI_Comm                    communicator = MPI_COMM_SELF);
 
+    /// Distribute the grains over the ranks of @p communicator from now on
+    /// (keeping the contacts' history).
+    void
+    set_communicator(MPI_Comm communicator);
+
     /// Switch contact model (e.g. frictionless preparation to friction).
     void
     set_model(const ContactModel &model);
