@@ -143,10 +143,7 @@ main(int argc, char **argv)
       sable::set_threads(threads >= 0 ? threads : common.threads);
       if (common.model == sable::Model::qusgm)
         {
-          if (resume)
-            throw sable::InputError("--resume: checkpoints exist for MPM scenes only "
-                                    "('Model = mpm'), this scene is QuSGM");
-          sable::qusgm::run_scene(first, MPI_COMM_WORLD);
+          sable::qusgm::run_scene(first, MPI_COMM_WORLD, resume);
         }
       else if (common.dimension == 3)
         sable::mpm::run_scene<3>(first, MPI_COMM_WORLD, resume);

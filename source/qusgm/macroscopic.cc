@@ -65,10 +65,11 @@ namespace sable::qusgm
     return {k, g};
   }
 
-  IncrementTable::IncrementTable(const std::string &filename)
-    : out(filename)
+  IncrementTable::IncrementTable(const std::string &filename, const bool append)
+    : out(filename, append ? std::ios::app : std::ios::out)
   {
-    out << "increment,stage,strain_x,strain_y,strain_z,stress_x,stress_y,"
+    if (!append)
+      out << "increment,stage,strain_x,strain_y,strain_z,stress_x,stress_y,"
            "stress_z,confining_stress,deviatoric_stress,bulk_modulus,"
            "shear_modulus,sliding_ratio,coordination_number,solid_fraction,contacts,"
            "iterations,evaluations,residual,relative_residual,wall_time\n";

@@ -11,6 +11,8 @@
 #include <sable/base/common_parameters.h>
 #include <sable/qusgm/load_path.h>
 #include <sable/qusgm/preparation.h>
+#include <sable/base/checkpoint_directory.h>
+#include <sable/qusgm/checkpoint.h>
 #include <sable/qusgm/run_scene.h>
 #include <sable/qusgm/simulation.h>
 
@@ -171,6 +173,13 @@ namespace sable::qusgm
                         "Increments of the load path to write as grains-NNNNN.vtu: "
                         "'none', or a comma-separated list of increment numbers "
                         "(0: the prepared pack), 'last' and 'all'.");
+      prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
+                        "Write a checkpoint (output directory/checkpoint) when the "
+                        "pack is prepared and then every this many increments of "
+                        "the load path; 0: none. 'sable scene.prm --resume' "
+                        "continues from the last one, on any number of MPI ranks, "
+                        "as if the run had not stopped. The parameter file is read "
+                        "again on resume: keep the pack and the load path.");
       prm.declare_entry("Iteration log", "false", Patterns::Bool(),
                         "Write every minimiser iteration (iteration, Pi, |grad Pi|, "
                         "step, active and sliding contacts) to iterations.log.");
@@ -191,7 +200,7 @@ namespace sable::qusgm
   } // namespace
 
   void
-  run_scene(const std::string &filename, MPI_Comm communicator)
+  run_scene(const std::string &filename, MPI_Comm communicator, const bool resume)
   {
     const auto start = std::chrono::steady_clock::now();
     const bool root  = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
@@ -358,6 +367,7 @@ namespace sable::qusgm
     prm.enter_subsection("Output");
     vtu_list      = prm.get("VTU increments");
     iteration_log = prm.get_bool("Iteration log");
+    const unsigned int checkpoint_interval = prm.get_integer("Checkpoint interval");
     prm.leave_subsection();
     std::set<unsigned int> vtu_increments;
     bool vtu_all = false, vtu_last = false;
@@ -415,6 +425,10 @@ namespace sable::qusgm
       }
     pack.check("Pack");
 
+    // The checkpoint to resume from, before any work.
+    const std::string checkpoint =
+      resume ? find_checkpoint(output, communicator, std::cout) : std::string();
+
     // --- Work and output. Every rank runs the whole scene (the grains'
     // contacts are shared out, see GrainPartition); the first one writes.
     if (root)
@@ -433,15 +447,29 @@ namespace sable::qusgm
     std::ofstream log_file;
     std::ostream  no_log(nullptr);
     if (iteration_log && root)
-      log_file.open(output + "/iterations.log");
+      log_file.open(output + "/iterations.log", resume ? std::ios::app : std::ios::out);
 
     Simulation sim(pack, walls, model, settings, out, &timer, communicator);
     sim.axis = path.axis;
+    RunProgress progress;
+    if (resume)
+      {
+        progress = load_checkpoint(sim, checkpoint);
+        // the table as it was at the checkpoint, continued from there
+        const unsigned int rows = sim.n_increments;
+        on_root(communicator, [&]() {
+          keep_table_rows(output + "/increments.csv",
+                          [rows](const unsigned long increment) { return increment <= rows; });
+        });
+        out << "Resumed from " << checkpoint << " after " << progress.load_increments
+            << " increment(s) of the load path (" << rows << " in increments.csv)" << std::endl;
+      }
     if (root)
-      sim.open_table(output + "/increments.csv");
+      sim.open_table(output + "/increments.csv", resume);
     if (iteration_log)
       sim.iteration_log = root ? static_cast<std::ostream *>(&log_file) : &no_log;
-    std::vector<std::pair<double, std::string>> vtu_records, contact_records;
+    std::vector<std::pair<double, std::string>> &vtu_records     = progress.grain_files;
+    std::vector<std::pair<double, std::string>> &contact_records = progress.contact_files;
     auto write_vtu = [&](const unsigned int increment) {
       dealii::TimerOutput::Scope scope(timer, "output");
       const std::string name =
@@ -462,7 +490,11 @@ namespace sable::qusgm
       dealii::DataOutBase::write_pvd_record(contacts_pvd, contact_records);
     };
 
-    if (prepare)
+    const auto checkpoint_now = [&]() {
+      dealii::TimerOutput::Scope scope(timer, "checkpoint");
+      save_checkpoint(sim, progress, output, communicator);
+    };
+    if (prepare && !resume)
       {
         out << "Preparation: frictionless isotropic compaction to "
             << preparation.target_confining_stress * 1e-6
@@ -473,16 +505,24 @@ namespace sable::qusgm
         if (root)
           write_pack(sim.pack, output + "/prepared_pack.csv");
       }
-    sim.reset_undeformed();
-    if (vtu_all || vtu_increments.count(0))
-      write_vtu(0);
+    if (!resume)
+      {
+        sim.reset_undeformed();
+        if (vtu_all || vtu_increments.count(0))
+          write_vtu(0);
+        if (checkpoint_interval > 0)
+          checkpoint_now();
+      }
     out << "Load path: " << path_name << ", " << path.n_increments
         << " increments of " << path.strain_increment << std::endl;
-    for (unsigned int k = 1; k <= path.n_increments; ++k)
+    for (unsigned int k = progress.load_increments + 1; k <= path.n_increments; ++k)
       {
         sim.strain_step(path.strain_increments(), "test");
         if (vtu_all || vtu_increments.count(k) || (vtu_last && k == path.n_increments))
           write_vtu(k);
+        progress.load_increments = k;
+        if (checkpoint_interval > 0 && k % checkpoint_interval == 0)
+          checkpoint_now();
       }
     if (root)
       write_pack(sim.pack, output + "/final_pack.csv");

@@ -43,9 +43,9 @@ namespace sable::qusgm
   }
 
   void
-  Simulation::open_table(const std::string &filename)
+  Simulation::open_table(const std::string &filename, const bool append)
   {
-    table = std::make_shared<IncrementTable>(filename);
+    table = std::make_shared<IncrementTable>(filename, append);
   }
 
   void

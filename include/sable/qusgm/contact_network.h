@@ -21,6 +21,13 @@ namespace sable::qusgm
     bool   gravity  = false; ///< weight m g along -z
     double gravity_acceleration = 9.81;
 
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      ar &friction &wall_friction &torsion &gravity &gravity_acceleration;
+    }
+
     bool
     frictional() const
     {
@@ -46,6 +53,13 @@ namespace sable::qusgm
     double       q_max, m_max; ///< Coulomb caps mu P0, (3 pi/16) a0 mu P0
     double       lever_i;      ///< distance from centre i to contact centre
     double       lever_j;      ///< same for grain j (grain-grain only)
+
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      ar &i &other &k_n &h0 &p0 &q0 &m0 &k_s &k_t &q_max &m_max &lever_i &lever_j;
+    }
 
     std::uint64_t
     key(const unsigned int n_grains) const

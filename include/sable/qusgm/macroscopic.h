@@ -26,6 +26,16 @@ namespace sable::qusgm
     double coordination      = 0;   ///< mean contacts per grain
     double solid_fraction    = 0;   ///< grain volume / box volume
     unsigned int n_contacts  = 0;
+
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      for (unsigned int a = 0; a < 3; ++a)
+        ar &strain[a] &stress[a];
+      ar &confining_stress &deviatoric_stress &sliding_ratio &coordination &solid_fraction
+        &n_contacts;
+    }
   };
 
   MacroscopicState
@@ -49,7 +59,8 @@ namespace sable::qusgm
   class IncrementTable
   {
   public:
-    explicit IncrementTable(const std::string &filename);
+    /// With @p append, continue an existing table (no header).
+    explicit IncrementTable(const std::string &filename, bool append = false);
 
     void
     write(unsigned int             increment,

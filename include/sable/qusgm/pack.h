@@ -26,6 +26,13 @@ namespace sable::qusgm
     std::vector<double>   shear_modulus;
     std::vector<double>   density;
 
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      ar &centre &radius &youngs_modulus &poisson_ratio &shear_modulus &density;
+    }
+
     unsigned int
     size() const
     {
@@ -96,6 +103,15 @@ namespace sable::qusgm
     std::array<double, 6> position{{0, 0, 0, 1, 1, 1}};
     double                youngs_modulus = 7e12;
     double                poisson_ratio  = 0.495;
+
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      for (double &x : position)
+        ar &x;
+      ar &youngs_modulus &poisson_ratio;
+    }
 
     static unsigned int
     axis(const unsigned int w)

@@ -12,9 +12,12 @@ namespace sable::qusgm
   void
   declare_parameters(dealii::ParameterHandler &prm);
 
-  /// Read, check and run the QuSGM scene in @p filename.
+  /**
+   * Read, check and run the QuSGM scene in @p filename; with @p resume,
+   * continue from the last checkpoint in its output directory.
+   */
   void
-  run_scene(const std::string &filename, MPI_Comm communicator);
+  run_scene(const std::string &filename, MPI_Comm communicator, bool resume = false);
 } // namespace sable::qusgm
 
 #endif

@@ -53,9 +53,23 @@ namespace sable::qusgm
     void
     set_model(const ContactModel &model);
 
-    /// Write a row per increment to @p filename from now on.
+    /// Write a row per increment to @p filename from now on (with
+    /// @p append, after the rows it has).
     void
-    open_table(const std::string &filename);
+    open_table(const std::string &filename, bool append = false);
+
+    /**
+     * The state a run continues from: pack, walls, contact model, every
+     * contact with its reference loads, and what the next increment takes
+     * from the last one. Collective; the bytes are returned on rank 0 only
+     * (see sable/qusgm/checkpoint.h).
+     */
+    std::string
+    save_state() const;
+
+    /// Continue from the bytes of save_state() (on every rank).
+    void
+    load_state(const std::string &bytes);
 
     /// Apply wall moves, reach equilibrium, record, print a progress line.
     const IncrementRecord &
