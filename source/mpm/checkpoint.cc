@@ -276,7 +276,15 @@ namespace sable::mpm
     // the mesh with its refinement, and the material points
     triangulation.load((path / mesh_file).string());
     particle_handler->deserialize();
-    setup_after_mesh_change();
+    // the loaded mesh is split by cells only (and maybe over another
+    // number of ranks): balance the material points again
+    if (parallel && parameters.balance_particles)
+      {
+        connect_cell_weights();
+        rebalance();
+      }
+    else
+      setup_after_mesh_change();
     require(particle_handler->n_global_particles() == state.n_particles,
             "cannot resume from '" + directory + "': it should hold " +
               std::to_string(state.n_particles) + " material points, " +
@@ -330,6 +338,8 @@ namespace sable::mpm
           << step_number << ", t = " << time << ": " << triangulation.n_global_active_cells()
           << " cells, " << particle_handler->n_global_particles() << " material points, "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s)" << std::endl;
+    if (parallel)
+      print_balance();
     initialized = true;
   }
 

@@ -109,6 +109,7 @@ namespace sable::mpm
       }
     has_gravity = parameters.gravity.norm() > 0.;
     parallel    = Utilities::MPI::n_mpi_processes(communicator) > 1;
+
     use_contact = parameters.contact.model != ContactParameters::Model::none &&
                   parameters.bodies.size() > 1;
     if (use_contact)
@@ -197,11 +198,7 @@ namespace sable::mpm
     particle_handler->update_cached_numbers();
     if (parallel && parameters.balance_particles)
       {
-        weight_connection = triangulation.signals.weight.connect(
-          [this](const typename Triangulation<dim>::cell_iterator &cell,
-                 const typename Triangulation<dim>::CellStatus     status) {
-            return cell_weight(cell, status);
-          });
+        connect_cell_weights();
         rebalance(); // also sizes the nodal vectors
       }
     else
@@ -876,6 +873,19 @@ namespace sable::mpm
           Assert(false, ExcInternalError());
       }
     return cell_cost + particle_cost * n_particles;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::connect_cell_weights()
+  {
+    // from now on p4est weighs the cells by their material points at every
+    // repartition: rebalance() and adaptation
+    weight_connection = triangulation.signals.weight.connect(
+      [this](const typename Triangulation<dim>::cell_iterator &cell,
+             const typename Triangulation<dim>::CellStatus     status) {
+        return cell_weight(cell, status);
+      });
   }
 
   template <int dim>

@@ -165,6 +165,10 @@ namespace sable::mpm
     void
     rebalance();
 
+    /// Weigh cells by cell_weight() in every repartition from now on.
+    void
+    connect_cell_weights();
+
     /// Material points per rank after the last rebalance(): min, max.
     std::pair<unsigned long long, unsigned long long>
     particles_per_rank() const;
