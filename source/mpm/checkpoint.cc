@@ -44,12 +44,13 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      unsigned int          format         = 1;
+      unsigned int          format         = 2;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
       unsigned int          n_properties   = 0;
       unsigned int          n_coarse_cells = 0;
       unsigned int          n_ranks        = 0;
+      unsigned int          base_level     = 0;
       std::vector<double>   grid_box;
       unsigned long long    n_particles  = 0;
       unsigned int          step_number  = 0;
@@ -78,7 +79,7 @@ namespace sable::mpm
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &grid_box;
+        ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
         ar &n_particles &step_number &time &time_step &max_signal_speed &boundary_work;
         ar &initial_energy &initial_gravity_energy &energy_floor &largest_gravity_release;
         ar &next_output_time &output_counter &adaptations_without_change &travel_since_adaptation;
@@ -159,6 +160,7 @@ namespace sable::mpm
     state.n_properties            = layout.n_properties();
     state.n_coarse_cells          = triangulation.n_cells(0);
     state.n_ranks                 = Utilities::MPI::n_mpi_processes(communicator);
+    state.base_level              = base_level;
     state.grid_box                = grid_box(triangulation);
     state.n_particles             = particle_handler->n_global_particles();
     state.step_number             = step_number;
@@ -239,10 +241,10 @@ namespace sable::mpm
       return "cannot resume from '" + directory + "': it holds a scene with " + what + " " +
              saved + ", the parameter file gives " + now;
     };
-    require(state.format == 1 && state.dimension == dim,
+    require(state.format == 2 && state.dimension == dim,
             mismatch("format/dimension",
                      std::to_string(state.format) + "/" + std::to_string(state.dimension),
-                     "1/" + std::to_string(dim)));
+                     "2/" + std::to_string(dim)));
     require(state.n_bodies == parameters.bodies.size(),
             mismatch("'Number of bodies' =",
                      std::to_string(state.n_bodies),
@@ -273,6 +275,9 @@ namespace sable::mpm
       require(same, mismatch("a coarse grid of", saved.str(), now.str()));
     }
 
+    base_level = state.base_level;
+    if (mesh_refinement)
+      mesh_refinement->set_base_level(base_level);
     // the mesh with its refinement, and the material points
     triangulation.load((path / mesh_file).string());
     particle_handler->deserialize();

@@ -30,7 +30,7 @@ namespace sable::mpm
     if (!parameters.enabled())
       return;
     for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->level() < static_cast<int>(parameters.minimum_level))
+      if (cell->is_locally_owned() && level(cell) < static_cast<int>(parameters.minimum_level))
         cell->set_refine_flag();
     // refining a cell to the minimum level may take several passes on a
     // grid that starts with mixed levels
@@ -39,7 +39,7 @@ namespace sable::mpm
         triangulation.execute_coarsening_and_refinement();
         for (const auto &cell : triangulation.active_cell_iterators())
           if (cell->is_locally_owned() &&
-              cell->level() < static_cast<int>(parameters.minimum_level))
+              level(cell) < static_cast<int>(parameters.minimum_level))
             cell->set_refine_flag();
       }
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -205,14 +205,15 @@ namespace sable::mpm
       {
         if (!cell->is_locally_owned())
           continue;
-        const unsigned int level = cell->level();
-        if (decisions[cell->active_cell_index()] == refine && level < parameters.maximum_level)
+        const int cell_level = level(cell);
+        if (decisions[cell->active_cell_index()] == refine &&
+            cell_level < static_cast<int>(parameters.maximum_level))
           {
             cell->set_refine_flag();
             ++n_refine;
           }
         else if (decisions[cell->active_cell_index()] == coarsen &&
-                 level > parameters.minimum_level)
+                 cell_level > static_cast<int>(parameters.minimum_level))
           {
             const auto parent         = cell->parent();
             bool       whole_family = true;

@@ -4,25 +4,41 @@
 #include <sable/mpm/run_scene.h>
 #include <sable/mpm/simulator.h>
 
+#include <algorithm>
 #include <optional>
 
 namespace sable::mpm
 {
   template <int dim>
-  void
+  unsigned int
   make_grid(const GridParameters<dim> &                 parameters,
-            parallel::distributed::Triangulation<dim> &triangulation)
+            parallel::distributed::Triangulation<dim> &triangulation,
+            const bool                                 refine)
   {
+    unsigned int              k = 0;
+    std::vector<unsigned int> coarse = parameters.subdivisions;
+    while (std::all_of(coarse.begin(), coarse.end(), [](const unsigned int n) {
+      return n > 0 && n % 2 == 0;
+    }))
+      {
+        for (unsigned int &n : coarse)
+          n /= 2;
+        ++k;
+      }
     GridGenerator::subdivided_hyper_rectangle(triangulation,
-                                              parameters.subdivisions,
+                                              coarse,
                                               parameters.lower_corner,
                                               parameters.upper_corner,
                                               /*colorize=*/true);
-    // colorize numbers the faces x-, x+, y-, ... as 0, 1, 2, ...
+    // colorize numbers the faces x-, x+, y-, ... as 0, 1, 2, ...; children
+    // inherit the ids
     for (const auto &cell : triangulation.active_cell_iterators())
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
           face->set_boundary_id(parameters.face_ids[face->boundary_id()]);
+    if (refine)
+      triangulation.refine_global(k);
+    return k;
   }
 
   template <int dim>
@@ -34,7 +50,7 @@ namespace sable::mpm
     const std::string checkpoint =
       resume ? find_checkpoint(scene.simulator.output_directory, communicator, std::cout) : "";
     parallel::distributed::Triangulation<dim> triangulation(communicator);
-    make_grid(scene.grid, triangulation);
+    make_grid(scene.grid, triangulation, /*refine=*/!resume);
     std::optional<Simulator<dim>> simulator;
     simulator.emplace(triangulation, scene.simulator);
     try
@@ -52,8 +68,10 @@ namespace sable::mpm
       }
   }
 
-  template void make_grid<2>(const GridParameters<2> &, parallel::distributed::Triangulation<2> &);
-  template void make_grid<3>(const GridParameters<3> &, parallel::distributed::Triangulation<3> &);
+  template unsigned int
+  make_grid<2>(const GridParameters<2> &, parallel::distributed::Triangulation<2> &, bool);
+  template unsigned int
+  make_grid<3>(const GridParameters<3> &, parallel::distributed::Triangulation<3> &, bool);
   template void run_scene<2>(const std::string &, MPI_Comm, bool);
   template void run_scene<3>(const std::string &, MPI_Comm, bool);
 } // namespace sable::mpm

@@ -175,8 +175,18 @@ namespace sable::mpm
       return;
     TimerOutput::Scope scope(timer, "initialize");
     setup_models();
+    // the levels of 'Mesh refinement' count from the coarsest cells the grid
+    // starts with (make_grid() refines a small coarse mesh globally)
+    unsigned int coarsest = numbers::invalid_unsigned_int;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        coarsest = std::min(coarsest, static_cast<unsigned int>(cell->level()));
+    base_level = Utilities::MPI::min(coarsest, communicator);
     if (mesh_refinement)
-      mesh_refinement->refine_initial(triangulation, parameters.bodies);
+      {
+        mesh_refinement->set_base_level(base_level);
+        mesh_refinement->refine_initial(triangulation, parameters.bodies);
+      }
     grid.setup();
     boundary_conditions.setup(grid);
     create_particle_handler();
@@ -246,7 +256,7 @@ namespace sable::mpm
           << " cells";
     if (mesh_refinement)
       pcout << " (levels " << parameters.refinement.minimum_level << "-"
-            << triangulation.n_global_levels() - 1 << ", adapted every "
+            << triangulation.n_global_levels() - 1 - base_level << ", adapted every "
             << (parameters.refinement.interval > 0 ?
                   std::to_string(parameters.refinement.interval) + " steps)" :
                   std::string("half a fine cell of travel)"));

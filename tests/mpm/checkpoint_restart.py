@@ -111,11 +111,12 @@ check("resumed run says where it resumed", "resumed from" in output and "step 10
 check("resumed run continued to 150", rows[-1]["step"] == 150)
 if n_ranks > 1:
     # the loaded mesh is split by cells; the resume balances the points again:
-    # the work per rank may differ by the heaviest cells at the cut
-    # (100 + 600 x 4 points each), not by the empty cells' share
+    # the work per rank may differ by what p4est cannot split at the cut, a
+    # family of 4 cells (it keeps siblings together) of 100 + 600 x 4 points
+    # each on either side, not by the empty cells' share
     m = re.search(r"work per rank.*: (\d+) \.\. (\d+)", output)
     fewest, most = (int(g) for g in m.groups()) if m else (0, 10**9)
-    check("resumed on 2 ranks: work per rank balanced again", most - fewest <= 2 * 2500,
+    check("resumed on 2 ranks: work per rank balanced again", most - fewest <= 2 * 4 * 2500,
           f"{fewest} .. {most}")
 
 # as if the run had been killed while replacing the step-100 checkpoint:

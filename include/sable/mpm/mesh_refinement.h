@@ -61,6 +61,17 @@ namespace sable::mpm
                    const std::map<types::boundary_id, BoundaryParameters<dim>> &boundaries,
                    const std::vector<BodyParameters<dim>> &                    bodies);
 
+    /**
+     * The level of the grid's base cells (the Subdivisions cells of a
+     * scene, see make_grid()): 'Minimum level' and 'Maximum level' count
+     * from it. Default 0: from the coarse mesh.
+     */
+    void
+    set_base_level(const unsigned int level)
+    {
+      base_level = level;
+    }
+
     /// Refine globally to the minimum level, then where the criteria ask
     /// (judged by the bodies' seeding points) up to the maximum level.
     void
@@ -93,6 +104,15 @@ namespace sable::mpm
     const std::map<types::boundary_id, BoundaryParameters<dim>> boundaries;
     /// per body: whether the body surface criterion looks at it
     std::vector<bool> surface_bodies;
+    unsigned int      base_level = 0;
+
+    /// A cell's level counted from the base level.
+    template <class Iterator>
+    int
+    level(const Iterator &cell) const
+    {
+      return cell->level() - static_cast<int>(base_level);
+    }
   };
 } // namespace sable::mpm
 

@@ -10,11 +10,22 @@
 
 namespace sable::mpm
 {
-  /// Build the box grid a scene describes, with its boundary ids.
+  /**
+   * Build the box grid a scene describes, with its boundary ids: a coarse
+   * mesh of as few cells as possible, Subdivisions / 2^k in each direction
+   * with 2^k the largest power of two that divides every subdivision, then
+   * (with @p refine) k global refinements. p4est thus stores only each
+   * rank's own and ghost cells, not every cell of the grid on every rank.
+   * Returns k: the level of the Subdivisions cells, from which the levels
+   * of 'Mesh refinement' count (Simulator::initialize() finds it as the
+   * coarsest active level). Resuming from a checkpoint needs the coarse
+   * mesh alone (@p refine = false).
+   */
   template <int dim>
-  void
+  unsigned int
   make_grid(const GridParameters<dim> &                 parameters,
-            parallel::distributed::Triangulation<dim> &triangulation);
+            parallel::distributed::Triangulation<dim> &triangulation,
+            bool                                       refine = true);
 
   /// Read, check and run the MPM scene in @p filename; with @p resume,
   /// continue it from the last checkpoint in its output directory.

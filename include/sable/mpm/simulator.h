@@ -286,6 +286,8 @@ namespace sable::mpm
     std::vector<Tensor<2, dim>> velocity_gradients;
     bool                has_gravity = false;
     boost::signals2::connection weight_connection;
+    /// level of the coarsest cells at the start (see make_grid())
+    unsigned int base_level = 0;
 
     /// multi-body contact: only with a contact model and two or more bodies
     bool                                     use_contact = false;
