@@ -338,9 +338,9 @@ namespace sable::mpm
     state.output_counter          = output_counter;
     state.adaptations_without_change = adaptations_without_change;
     state.travel_since_adaptation    = travel_since_adaptation;
-    state.particle_files          = particle_files;
+    state.particle_files          = particle_series.files;
     state.contact_node_files      = contact_node_files;
-    state.xdmf_entries            = xdmf_entries;
+    state.xdmf_entries            = particle_series.xdmf_entries;
     if (contact)
       {
         // per-rank sums, kept on rank 0 after a restart
@@ -472,9 +472,9 @@ namespace sable::mpm
     output_counter          = state.output_counter;
     adaptations_without_change = state.adaptations_without_change;
     travel_since_adaptation    = state.travel_since_adaptation;
-    particle_files          = state.particle_files;
-    contact_node_files      = state.contact_node_files;
-    xdmf_entries            = state.xdmf_entries;
+    particle_series.files        = state.particle_files;
+    contact_node_files           = state.contact_node_files;
+    particle_series.xdmf_entries = state.xdmf_entries;
     if (contact && state.with_contact)
       {
         // the sums over ranks continue on rank 0

@@ -16,16 +16,12 @@
 #include <sable/mpm/owned_cell_strip.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
+#include <sable/mpm/postprocess/output_series.h>
 #include <sable/mpm/postprocess/statistics.h>
 
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace dealii
-{
-  class XDMFEntry;
-}
 
 namespace sable::mpm
 {
@@ -309,10 +305,8 @@ namespace sable::mpm
     Point<dim>         lost_location;
 
     std::unique_ptr<StatisticsFile<dim>>              statistics_file;
-    std::vector<std::pair<double, std::string>>       particle_files;
+    OutputSeries                                      particle_series;
     std::vector<std::pair<double, std::string>>       contact_node_files;
-    /// HDF5 output: one entry per particle file, for particles.xdmf
-    std::vector<XDMFEntry>                            xdmf_entries;
     double                                            next_output_time = 0;
     unsigned int                                      output_counter   = 0;
   };
