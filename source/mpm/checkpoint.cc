@@ -5,6 +5,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <sable/mpm/checkpoint.h>
+#include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/simulator.h>
 
 #include <boost/archive/text_iarchive.hpp>
@@ -126,7 +127,8 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      unsigned int          format         = 1;
+      /// 2: with the grid output series
+      unsigned int          format         = 2;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
       unsigned int          n_properties   = 0;
@@ -155,6 +157,8 @@ namespace sable::mpm
       std::vector<std::pair<double, std::string>> particle_files;
       std::vector<std::pair<double, std::string>> contact_node_files;
       std::vector<XDMFEntry>                      xdmf_entries;
+      std::vector<std::pair<double, std::string>> grid_files;
+      std::vector<XDMFEntry>                      grid_xdmf_entries;
 
       template <class Archive>
       void
@@ -166,6 +170,9 @@ namespace sable::mpm
         ar &next_output_time &output_counter &adaptations_without_change &travel_since_adaptation;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction &pair_forces;
         ar &particle_files &contact_node_files &xdmf_entries;
+        // format is read first, so a format 1 checkpoint loads without these
+        if (format >= 2)
+          ar &grid_files &grid_xdmf_entries;
       }
     };
 
@@ -341,6 +348,11 @@ namespace sable::mpm
     state.particle_files          = particle_series.files;
     state.contact_node_files      = contact_node_files;
     state.xdmf_entries            = particle_series.xdmf_entries;
+    if (grid_output)
+      {
+        state.grid_files        = grid_output->series.files;
+        state.grid_xdmf_entries = grid_output->series.xdmf_entries;
+      }
     if (contact)
       {
         // per-rank sums, kept on rank 0 after a restart
@@ -415,10 +427,10 @@ namespace sable::mpm
       return "cannot resume from '" + directory + "': it holds a scene with " + what + " " +
              saved + ", the parameter file gives " + now;
     };
-    require(state.format == 1 && state.dimension == dim,
+    require((state.format == 1 || state.format == 2) && state.dimension == dim,
             mismatch("format/dimension",
                      std::to_string(state.format) + "/" + std::to_string(state.dimension),
-                     "1/" + std::to_string(dim)));
+                     "1 or 2/" + std::to_string(dim)));
     require(state.n_bodies == parameters.bodies.size(),
             mismatch("'Number of bodies' =",
                      std::to_string(state.n_bodies),
@@ -475,6 +487,11 @@ namespace sable::mpm
     particle_series.files        = state.particle_files;
     contact_node_files           = state.contact_node_files;
     particle_series.xdmf_entries = state.xdmf_entries;
+    if (grid_output)
+      {
+        grid_output->series.files        = state.grid_files;
+        grid_output->series.xdmf_entries = state.grid_xdmf_entries;
+      }
     if (contact && state.with_contact)
       {
         // the sums over ranks continue on rank 0

@@ -7,6 +7,7 @@
 #include <deal.II/particles/data_out.h>
 
 #include <sable/base/input_error.h>
+#include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/q1_shape.h>
 #include <sable/mpm/simulator.h>
 
@@ -64,7 +65,11 @@ namespace sable::mpm
     , grid(triangulation)
     , boundary_conditions(parameters.boundaries)
     , particle_series(parameters.output_directory, "particles", parameters.output_format)
-  {}
+  {
+    if (parameters.grid_output)
+      grid_output =
+        std::make_unique<GridOutput<dim>>(parameters.output_directory, parameters.output_format);
+  }
 
   template <int dim>
   Simulator<dim>::~Simulator()
@@ -1182,6 +1187,8 @@ namespace sable::mpm
                           communicator);
     if (use_contact && parameters.contact_node_output)
       write_contact_nodes(counter);
+    if (grid_output)
+      grid_output->write(grid, *particle_handler, counter, time);
     next_output_time = time + parameters.output_interval;
   }
 
@@ -1331,6 +1338,7 @@ namespace sable::mpm
     if (!parameters.output_directory.empty())
       pcout << "Output written to " << parameters.output_directory << "/ (statistics.csv"
             << (write_output ? ", " + particle_series.series_file() : "")
+            << (write_output && grid_output ? ", " + grid_output->series.series_file() : "")
             << (write_checkpoints ? ", checkpoint/" : "") << ")" << std::endl;
     pcout << "Finished " << step_number << " steps to t = " << time << " in "
           << wall.wall_time() << " s wall time" << std::endl;

@@ -27,6 +27,9 @@ namespace sable::mpm
 {
   using namespace dealii;
 
+  template <int dim>
+  class GridOutput;
+
   /**
    * Explicit material point method on a deal.II background grid
    * (SPEC Part A). The triangulation belongs to the caller: a scene file
@@ -239,6 +242,7 @@ namespace sable::mpm
                 const typename Triangulation<dim>::CellStatus     status) const;
     void
     sort_particles();
+    /// Particle output, with the contact nodes and the grid if asked for.
     void
     write_particles();
     void
@@ -307,6 +311,8 @@ namespace sable::mpm
     std::unique_ptr<StatisticsFile<dim>>              statistics_file;
     OutputSeries                                      particle_series;
     std::vector<std::pair<double, std::string>>       contact_node_files;
+    /// only with Output/Grid output
+    std::unique_ptr<GridOutput<dim>>                  grid_output;
     double                                            next_output_time = 0;
     unsigned int                                      output_counter   = 0;
   };
