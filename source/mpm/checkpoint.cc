@@ -6,6 +6,7 @@
 
 #include <sable/base/checkpoint_directory.h>
 #include <sable/mpm/checkpoint.h>
+#include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/simulator.h>
 
 #include <boost/archive/text_iarchive.hpp>
@@ -44,7 +45,9 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      unsigned int          format         = 2;
+      /// 3: the grid's base level and the grid output series (checkpoints
+      /// of format 1 and 2 have a coarse mesh of every subdivision cell)
+      unsigned int          format         = 3;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
       unsigned int          n_properties   = 0;
@@ -74,6 +77,8 @@ namespace sable::mpm
       std::vector<std::pair<double, std::string>> particle_files;
       std::vector<std::pair<double, std::string>> contact_node_files;
       std::vector<XDMFEntry>                      xdmf_entries;
+      std::vector<std::pair<double, std::string>> grid_files;
+      std::vector<XDMFEntry>                      grid_xdmf_entries;
 
       template <class Archive>
       void
@@ -85,6 +90,7 @@ namespace sable::mpm
         ar &next_output_time &output_counter &adaptations_without_change &travel_since_adaptation;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction &pair_forces;
         ar &particle_files &contact_node_files &xdmf_entries;
+        ar &grid_files &grid_xdmf_entries;
       }
     };
 
@@ -176,9 +182,14 @@ namespace sable::mpm
     state.output_counter          = output_counter;
     state.adaptations_without_change = adaptations_without_change;
     state.travel_since_adaptation    = travel_since_adaptation;
-    state.particle_files          = particle_files;
+    state.particle_files          = particle_series.files;
     state.contact_node_files      = contact_node_files;
-    state.xdmf_entries            = xdmf_entries;
+    state.xdmf_entries            = particle_series.xdmf_entries;
+    if (grid_output)
+      {
+        state.grid_files        = grid_output->series.files;
+        state.grid_xdmf_entries = grid_output->series.xdmf_entries;
+      }
     if (contact)
       {
         // per-rank sums, kept on rank 0 after a restart
@@ -241,10 +252,10 @@ namespace sable::mpm
       return "cannot resume from '" + directory + "': it holds a scene with " + what + " " +
              saved + ", the parameter file gives " + now;
     };
-    require(state.format == 2 && state.dimension == dim,
+    require(state.format == 3 && state.dimension == dim,
             mismatch("format/dimension",
                      std::to_string(state.format) + "/" + std::to_string(state.dimension),
-                     "2/" + std::to_string(dim)));
+                     "3 (this version of sable)/" + std::to_string(dim)));
     require(state.n_bodies == parameters.bodies.size(),
             mismatch("'Number of bodies' =",
                      std::to_string(state.n_bodies),
@@ -309,9 +320,14 @@ namespace sable::mpm
     output_counter          = state.output_counter;
     adaptations_without_change = state.adaptations_without_change;
     travel_since_adaptation    = state.travel_since_adaptation;
-    particle_files          = state.particle_files;
-    contact_node_files      = state.contact_node_files;
-    xdmf_entries            = state.xdmf_entries;
+    particle_series.files        = state.particle_files;
+    contact_node_files           = state.contact_node_files;
+    particle_series.xdmf_entries = state.xdmf_entries;
+    if (grid_output)
+      {
+        grid_output->series.files        = state.grid_files;
+        grid_output->series.xdmf_entries = state.grid_xdmf_entries;
+      }
     if (contact && state.with_contact)
       {
         // the sums over ranks continue on rank 0

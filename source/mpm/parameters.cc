@@ -444,7 +444,8 @@ namespace sable::mpm
     prm.declare_entry("Output format",
                       "vtu",
                       Patterns::Selection("vtu|hdf5"),
-                      "Format of the particle files. vtu: one "
+                      "Format of the particle files (and of the grid "
+                      "files, see 'Grid output'). vtu: one "
                       "particles_NNNNN.pvtu (with a .vtu per rank) per output "
                       "time and the series particles.pvd. hdf5: one "
                       "particles_NNNNN.h5 per output time, written by all "
@@ -465,6 +466,22 @@ namespace sable::mpm
                       "(contact_nodes_NNNNN.pvtu): per body at each node its "
                       "normal, contact force and state (0 free, 1 stick, "
                       "2 slip).");
+    prm.declare_entry("Grid output",
+                      "false",
+                      Patterns::Bool(),
+                      "With each particle output, also write the background "
+                      "grid (its active cells, as refined at that time) in "
+                      "the 'Output format': grid_NNNNN.pvtu and grid.pvd, or "
+                      "grid_NNNNN.h5 and grid.xdmf, numbered as the particle "
+                      "files. Vertex fields: mass (kg) and velocity (m/s, "
+                      "momentum / mass, 0 where the mass is 0), the material "
+                      "points' mass and momentum at the output time (after "
+                      "the step's grid-to-particle update and particle "
+                      "move) scattered to the nodes with the transfers' "
+                      "shape functions; hanging nodes show the mass and "
+                      "momentum interpolated from the coarse side. Cell "
+                      "fields: material_points (number in the cell), level "
+                      "(refinement level) and rank (owning MPI rank).");
     prm.declare_entry("Statistics interval",
                       "1",
                       Patterns::Integer(1),
@@ -803,6 +820,7 @@ namespace sable::mpm
     p.output_format       = prm.get("Output format") == "hdf5" ? OutputFormat::hdf5 : OutputFormat::vtu;
     p.checkpoint_interval = prm.get_integer("Checkpoint interval");
     p.contact_node_output = prm.get_bool("Contact node output");
+    p.grid_output         = prm.get_bool("Grid output");
     p.statistics_interval = prm.get_integer("Statistics interval");
     p.progress_interval   = prm.get_integer("Progress interval");
     p.energy_growth_limit = prm.get_double("Energy growth limit");

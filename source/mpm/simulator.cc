@@ -7,6 +7,7 @@
 #include <deal.II/particles/data_out.h>
 
 #include <sable/base/input_error.h>
+#include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/q1_shape.h>
 #include <sable/mpm/simulator.h>
 
@@ -63,7 +64,12 @@ namespace sable::mpm
             TimerOutput::wall_times)
     , grid(triangulation)
     , boundary_conditions(parameters.boundaries)
-  {}
+    , particle_series(parameters.output_directory, "particles", parameters.output_format)
+  {
+    if (parameters.grid_output)
+      grid_output =
+        std::make_unique<GridOutput<dim>>(parameters.output_directory, parameters.output_format);
+  }
 
   template <int dim>
   Simulator<dim>::~Simulator()
@@ -1193,56 +1199,16 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       interpretation[layout.velocity + d] = DataComponentInterpretation::component_is_part_of_vector;
     data_out.build_patches(*particle_handler, names, interpretation);
+    const unsigned int counter = output_counter++;
+    particle_series.write(data_out,
+                          particle_handler->n_locally_owned_particles() > 0,
+                          counter,
+                          time,
+                          communicator);
     if (use_contact && parameters.contact_node_output)
-      write_contact_nodes(output_counter);
-    if (parameters.output_format == OutputFormat::hdf5)
-      {
-        // one file for all ranks (collective MPI-IO), no merging of
-        // material points that share a location. deal.II 9.4's writer
-        // hangs if a rank has no patches (it skips collective dataset
-        // writes), so only the ranks that hold material points write, and
-        // the first of them hands the XDMF entry to everybody.
-        const std::string name =
-          "particles_" + Utilities::int_to_string(output_counter++, 5) + ".h5";
-        const unsigned int rank       = Utilities::MPI::this_mpi_process(communicator);
-        const bool         has_points = particle_handler->n_locally_owned_particles() > 0;
-        const unsigned int first_writer =
-          Utilities::MPI::min(has_points ? rank : numbers::invalid_unsigned_int, communicator);
-        if (first_writer != numbers::invalid_unsigned_int)
-          {
-            MPI_Comm writers;
-            MPI_Comm_split(communicator, has_points ? 0 : MPI_UNDEFINED, rank, &writers);
-            XDMFEntry entry;
-            if (has_points)
-              {
-                DataOutBase::DataOutFilter filter(
-                  DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/false,
-                                                  /*xdmf_hdf5_output=*/true));
-                data_out.write_filtered_data(filter);
-                data_out.write_hdf5_parallel(filter,
-                                             parameters.output_directory + "/" + name,
-                                             writers);
-                entry = data_out.create_xdmf_entry(filter, name, time, writers);
-                MPI_Comm_free(&writers);
-              }
-            xdmf_entries.push_back(Utilities::MPI::broadcast(communicator, entry, first_writer));
-            if (rank == 0)
-              data_out.write_xdmf_file(xdmf_entries,
-                                       parameters.output_directory + "/particles.xdmf",
-                                       MPI_COMM_SELF);
-          }
-      }
-    else
-      {
-        const std::string name = data_out.write_vtu_with_pvtu_record(
-          parameters.output_directory + "/", "particles", output_counter++, communicator, 5);
-        particle_files.emplace_back(time, name);
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          {
-            std::ofstream pvd(parameters.output_directory + "/particles.pvd");
-            DataOutBase::write_pvd_record(pvd, particle_files);
-          }
-      }
+      write_contact_nodes(counter);
+    if (grid_output)
+      grid_output->write(grid, *particle_handler, counter, time, base_level);
     next_output_time = time + parameters.output_interval;
   }
 
@@ -1391,9 +1357,8 @@ namespace sable::mpm
       timer.print_summary();
     if (!parameters.output_directory.empty())
       pcout << "Output written to " << parameters.output_directory << "/ (statistics.csv"
-            << (write_output ? (parameters.output_format == OutputFormat::hdf5 ? ", particles.xdmf" :
-                                                                                  ", particles.pvd") :
-                               "")
+            << (write_output ? ", " + particle_series.series_file() : "")
+            << (write_output && grid_output ? ", " + grid_output->series.series_file() : "")
             << (write_checkpoints ? ", checkpoint/" : "") << ")" << std::endl;
     pcout << "Finished " << step_number << " steps to t = " << time << " in "
           << wall.wall_time() << " s wall time" << std::endl;

@@ -187,7 +187,7 @@ namespace sable::mpm
     musl
   };
 
-  /// File format of the particle output.
+  /// File format of the particle (and grid) output.
   enum class OutputFormat
   {
     vtu, ///< particles_NNNNN.vtu/.pvtu and particles.pvd
@@ -226,6 +226,9 @@ namespace sable::mpm
     OutputFormat output_format       = OutputFormat::vtu;
     /// with the particle output, also the contact nodes (VTU)
     bool         contact_node_output = false;
+    /// with the particle output, also the background grid with nodal mass
+    /// and velocity and per-cell fields (GridOutput), in output_format
+    bool         grid_output         = false;
     unsigned int statistics_interval = 1;  ///< steps between CSV rows
     unsigned int progress_interval   = 100;
     bool         print_timings       = true;

@@ -16,20 +16,19 @@
 #include <sable/mpm/owned_cell_strip.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
+#include <sable/mpm/postprocess/output_series.h>
 #include <sable/mpm/postprocess/statistics.h>
 
 #include <memory>
 #include <string>
 #include <vector>
 
-namespace dealii
-{
-  class XDMFEntry;
-}
-
 namespace sable::mpm
 {
   using namespace dealii;
+
+  template <int dim>
+  class GridOutput;
 
   /**
    * Explicit material point method on a deal.II background grid
@@ -247,6 +246,7 @@ namespace sable::mpm
                 const typename Triangulation<dim>::CellStatus     status) const;
     void
     sort_particles();
+    /// Particle output, with the contact nodes and the grid if asked for.
     void
     write_particles();
     void
@@ -315,10 +315,10 @@ namespace sable::mpm
     Point<dim>         lost_location;
 
     std::unique_ptr<StatisticsFile<dim>>              statistics_file;
-    std::vector<std::pair<double, std::string>>       particle_files;
+    OutputSeries                                      particle_series;
     std::vector<std::pair<double, std::string>>       contact_node_files;
-    /// HDF5 output: one entry per particle file, for particles.xdmf
-    std::vector<XDMFEntry>                            xdmf_entries;
+    /// only with Output/Grid output
+    std::unique_ptr<GridOutput<dim>>                  grid_output;
     double                                            next_output_time = 0;
     unsigned int                                      output_counter   = 0;
   };
