@@ -402,28 +402,45 @@ namespace sable::mpm
   void
   Simulator<dim>::find_contact_nodes()
   {
+    TimerOutput::Scope scope(timer, "find contact nodes (in particles to grid)");
     body_fields.clear(grid.n_relevant_nodes());
-    std::vector<unsigned int> bodies;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      {
-        if (cell->is_artificial() || (!parallel && !cell->is_locally_owned()))
-          continue;
-        const auto particles = particle_handler->particles_in_cell(cell);
-        if (particles.begin() == particles.end())
-          continue;
-        bodies.clear();
-        for (const auto &particle : particles)
-          {
-            const unsigned int body =
-              static_cast<unsigned int>(particle.get_properties()[layout.body]);
-            if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
-              bodies.push_back(body);
-          }
-        const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(cell));
-        for (unsigned int k = 0; k < n_nodes; ++k)
-          for (const unsigned int body : bodies)
-            body_fields.add(nodes[k], body);
-      }
+    // the cells of one colour share no node, so their threads mark
+    // different nodes; the extra (node, body) pairs are collected per range
+    // of cells and sorted by allocate(), so the table does not depend on
+    // the threads
+    std::mutex mutex;
+    for (const auto &colour : scatter_colours)
+      parallel::apply_to_subranges(
+        0u,
+        static_cast<unsigned int>(colour.size()),
+        [&](const unsigned int begin, const unsigned int end) {
+          std::vector<unsigned int>                          bodies;
+          std::vector<std::pair<unsigned int, unsigned int>> extra;
+          for (unsigned int c = begin; c < end; ++c)
+            {
+              const auto particles = particle_handler->particles_in_cell(colour[c]);
+              if (particles.begin() == particles.end())
+                continue;
+              bodies.clear();
+              for (const auto &particle : particles)
+                {
+                  const unsigned int body =
+                    static_cast<unsigned int>(particle.get_properties()[layout.body]);
+                  if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
+                    bodies.push_back(body);
+                }
+              const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(colour[c]));
+              for (unsigned int k = 0; k < n_nodes; ++k)
+                for (const unsigned int body : bodies)
+                  body_fields.add(nodes[k], body, extra);
+            }
+          if (!extra.empty())
+            {
+              std::lock_guard<std::mutex> lock(mutex);
+              body_fields.add_extra_bodies(extra);
+            }
+        },
+        32);
     body_fields.allocate();
   }
 

@@ -211,7 +211,8 @@ namespace sable::mpm
     /// follow through the ParticleHandler, the grid caches are rebuilt.
     void
     adapt_mesh();
-    /// Find the contact nodes of this step (bodies per node).
+    /// Find the contact nodes of this step (bodies per node), threaded
+    /// over the coloured cells as particles_to_grid().
     void
     find_contact_nodes();
     /// Per-body velocities at contact nodes, contact, boundary conditions.
