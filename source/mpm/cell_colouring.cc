@@ -7,40 +7,61 @@
 namespace sable::mpm
 {
   template <int dim>
-  std::vector<std::vector<typename Triangulation<dim>::active_cell_iterator>>
-  colour_cells_by_nodes(const Grid<dim> &grid, const bool with_ghost_cells)
+  void
+  CellColouring<dim>::reinit(const Grid<dim> &grid, const bool with_ghost_cells)
   {
-    using CellIterator = typename Triangulation<dim>::active_cell_iterator;
+    colours.clear();
     std::vector<CellIterator> cells;
     for (const auto &cell : grid.triangulation.active_cell_iterators())
       if (cell->is_locally_owned() || (with_ghost_cells && cell->is_ghost()))
         cells.push_back(cell);
     if (cells.empty())
-      return {};
+      return;
+
+    // blocks: their first cell's index; a block ends where the next starts
+    std::vector<unsigned int> blocks;
+    for (unsigned int c = 0; c < cells.size(); c += block_size)
+      blocks.push_back(c);
+    const auto block_end = [&](const unsigned int first) {
+      return std::min<std::size_t>(first + block_size, cells.size());
+    };
 
     // conflict = a shared unconstrained node (local node indices)
-    using Position = typename std::vector<CellIterator>::const_iterator;
-    const auto conflicts = [&grid](const Position &cell) {
-      const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(*cell));
-      return std::vector<types::global_dof_index>(nodes, nodes + n_nodes);
+    using Block           = std::vector<unsigned int>::const_iterator;
+    const auto conflicts = [&](const Block &block) {
+      std::vector<types::global_dof_index> nodes;
+      for (unsigned int c = *block; c < block_end(*block); ++c)
+        {
+          const auto [cell_nodes, n_nodes] = grid.cell_nodes(grid.cell_data(cells[c]));
+          nodes.insert(nodes.end(), cell_nodes, cell_nodes + n_nodes);
+        }
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      return nodes;
     };
-    const std::vector<std::vector<Position>> coloured =
-      GraphColoring::make_graph_coloring<Position>(cells.cbegin(), cells.cend(), conflicts);
+    const std::vector<std::vector<Block>> coloured =
+      GraphColoring::make_graph_coloring<Block>(blocks.cbegin(), blocks.cend(), conflicts);
 
-    std::vector<std::vector<CellIterator>> colours(coloured.size());
-    for (unsigned int c = 0; c < coloured.size(); ++c)
+    // each colour's blocks in the mesh's order
+    colours.resize(coloured.size());
+    for (unsigned int k = 0; k < coloured.size(); ++k)
       {
-        std::vector<Position> positions = coloured[c];
-        std::sort(positions.begin(), positions.end());
-        colours[c].reserve(positions.size());
-        for (const Position &position : positions)
-          colours[c].push_back(*position);
+        std::vector<unsigned int> firsts;
+        for (const Block &block : coloured[k])
+          firsts.push_back(*block);
+        std::sort(firsts.begin(), firsts.end());
+        Colour &colour = colours[k];
+        for (const unsigned int first : firsts)
+          {
+            colour.block_start.push_back(colour.cells.size());
+            colour.cells.insert(colour.cells.end(),
+                                cells.begin() + first,
+                                cells.begin() + block_end(first));
+          }
+        colour.block_start.push_back(colour.cells.size());
       }
-    return colours;
   }
 
-  template std::vector<std::vector<Triangulation<2>::active_cell_iterator>>
-  colour_cells_by_nodes<2>(const Grid<2> &, const bool);
-  template std::vector<std::vector<Triangulation<3>::active_cell_iterator>>
-  colour_cells_by_nodes<3>(const Grid<3> &, const bool);
+  template class CellColouring<2>;
+  template class CellColouring<3>;
 } // namespace sable::mpm

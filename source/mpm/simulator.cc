@@ -289,7 +289,7 @@ namespace sable::mpm
     old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
     new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
     // ghost cells scatter only to the per-body fields (contact under MPI)
-    scatter_colours = colour_cells_by_nodes(grid, use_contact && parallel);
+    scatter_colouring.reinit(grid, use_contact && parallel);
   }
 
   template <int dim>
@@ -404,43 +404,37 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "find contact nodes (in particles to grid)");
     body_fields.clear(grid.n_relevant_nodes());
-    // the cells of one colour share no node, so their threads mark
-    // different nodes; the extra (node, body) pairs are collected per range
-    // of cells and sorted by allocate(), so the table does not depend on
-    // the threads
+    // blocks of one colour share no node, so their threads mark different
+    // nodes; the extra (node, body) pairs are collected per range of cells
+    // and sorted by allocate(), so the table does not depend on the threads
     std::mutex mutex;
-    for (const auto &colour : scatter_colours)
-      parallel::apply_to_subranges(
-        0u,
-        static_cast<unsigned int>(colour.size()),
-        [&](const unsigned int begin, const unsigned int end) {
-          std::vector<unsigned int>                          bodies;
-          std::vector<std::pair<unsigned int, unsigned int>> extra;
-          for (unsigned int c = begin; c < end; ++c)
+    scatter_colouring.for_each_cell_range([&](const auto begin, const auto end) {
+      std::vector<unsigned int>                          bodies;
+      std::vector<std::pair<unsigned int, unsigned int>> extra;
+      for (auto cell = begin; cell != end; ++cell)
+        {
+          const auto particles = particle_handler->particles_in_cell(*cell);
+          if (particles.begin() == particles.end())
+            continue;
+          bodies.clear();
+          for (const auto &particle : particles)
             {
-              const auto particles = particle_handler->particles_in_cell(colour[c]);
-              if (particles.begin() == particles.end())
-                continue;
-              bodies.clear();
-              for (const auto &particle : particles)
-                {
-                  const unsigned int body =
-                    static_cast<unsigned int>(particle.get_properties()[layout.body]);
-                  if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
-                    bodies.push_back(body);
-                }
-              const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(colour[c]));
-              for (unsigned int k = 0; k < n_nodes; ++k)
-                for (const unsigned int body : bodies)
-                  body_fields.add(nodes[k], body, extra);
+              const unsigned int body =
+                static_cast<unsigned int>(particle.get_properties()[layout.body]);
+              if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
+                bodies.push_back(body);
             }
-          if (!extra.empty())
-            {
-              std::lock_guard<std::mutex> lock(mutex);
-              body_fields.add_extra_bodies(extra);
-            }
-        },
-        32);
+          const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(*cell));
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            for (const unsigned int body : bodies)
+              body_fields.add(nodes[k], body, extra);
+        }
+      if (!extra.empty())
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          body_fields.add_extra_bodies(extra);
+        }
+    });
     body_fields.allocate();
   }
 
@@ -573,20 +567,15 @@ namespace sable::mpm
             }
         }
     };
-    // The cells of one colour share no node: they scatter concurrently
-    // without locks, and each node adds up its cells colour by colour, in an
-    // order that does not depend on the number of threads (1 thread runs
-    // the same order).
-    for (const auto &colour : scatter_colours)
-      parallel::apply_to_subranges(
-        0u,
-        static_cast<unsigned int>(colour.size()),
-        [&](const unsigned int begin, const unsigned int end) {
-          typename Grid<dim>::Shape shape;
-          for (unsigned int c = begin; c < end; ++c)
-            scatter_cell(colour[c], shape);
-        },
-        32);
+    // Blocks of cells of one colour share no node: they scatter
+    // concurrently without locks, and each node adds up its contributions
+    // in an order that does not depend on the number of threads (one
+    // thread runs the same order; cell_colouring.h).
+    scatter_colouring.for_each_cell_range([&](const auto begin, const auto end) {
+      typename Grid<dim>::Shape shape;
+      for (auto cell = begin; cell != end; ++cell)
+        scatter_cell(*cell, shape);
+    });
     nodal_data.compress(VectorOperation::add);
     nodal_data.update_ghost_values();
     if (with_extent)

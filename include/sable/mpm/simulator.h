@@ -221,7 +221,7 @@ namespace sable::mpm
     double
     compute_time_step() const;
     /// Scatter mass, momentum and (if @p with_forces) internal forces;
-    /// threaded over the cells of each colour of scatter_colours.
+    /// threaded over the blocks of each colour of scatter_colouring.
     void
     particles_to_grid(const bool with_forces);
     /// Nodal velocities before (old) and after (new) the momentum update.
@@ -271,10 +271,9 @@ namespace sable::mpm
     ParticleLayout<dim>                              layout;
     std::unique_ptr<Particles::ParticleHandler<dim>> particle_handler;
 
-    /// the cells particles_to_grid() visits, by colour (no two cells of a
-    /// colour share a node); rebuilt with the grid caches
-    std::vector<std::vector<typename Triangulation<dim>::active_cell_iterator>>
-      scatter_colours;
+    /// the cells particles_to_grid() visits, in blocks coloured so that no
+    /// two blocks of a colour share a node; rebuilt with the grid caches
+    CellColouring<dim> scatter_colouring;
     /// mass, momentum (dim), force (dim) per node, node by node
     NodalVector         nodal_data;
     /// extent of the material around each node, 2 dim values per node
