@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Threads do not change MPM results: a scene run with one thread, with
 `--threads 2` and with SABLE_THREADS=3 writes byte-identical statistics.csv.
-The threaded loops are the particle-to-grid scatter (cells coloured so that
-no two cells of a colour share a node; every node adds its cells colour by
-colour, whatever the number of threads), the contact node loop (sums over
+The threaded loops are the particle-to-grid scatter and the search for
+contact nodes (blocks of cells coloured so that no two blocks of a colour
+share a node; every node adds its contributions colour by colour, block by
+block, whatever the number of threads), the contact node loop (sums over
 nodes formed in fixed chunks), the nodal updates, the grid-to-particle
 gather and the stress update (each point's own data only).
 
