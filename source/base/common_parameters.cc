@@ -30,8 +30,8 @@ namespace sable
                       "1",
                       dealii::Patterns::Integer(0),
                       "Threads per MPI rank for the threaded loops (MPM "
-                      "stress update, QuSGM work functional and vector "
-                      "operations); 0: one per core. The command line option "
+                      "transfers, contact and stress update, QuSGM work "
+                      "functional and vector operations); 0: one per core. The command line option "
                       "--threads N and the environment variable SABLE_THREADS "
                       "override it. Results do not depend on it.");
   }

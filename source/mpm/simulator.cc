@@ -7,6 +7,7 @@
 #include <deal.II/particles/data_out.h>
 
 #include <sable/base/input_error.h>
+#include <sable/mpm/cell_colouring.h>
 #include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/q1_shape.h>
 #include <sable/mpm/simulator.h>
@@ -300,6 +301,8 @@ namespace sable::mpm
     nodal_mass.assign(grid.n_relevant_nodes(), 0.);
     old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
     new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
+    // ghost cells scatter only to the per-body fields (contact under MPI)
+    scatter_colouring.reinit(grid, use_contact && parallel);
   }
 
   template <int dim>
@@ -412,28 +415,39 @@ namespace sable::mpm
   void
   Simulator<dim>::find_contact_nodes()
   {
+    TimerOutput::Scope scope(timer, "find contact nodes (in particles to grid)");
     body_fields.clear(grid.n_relevant_nodes());
-    std::vector<unsigned int> bodies;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      {
-        if (cell->is_artificial() || (!parallel && !cell->is_locally_owned()))
-          continue;
-        const auto particles = particle_handler->particles_in_cell(cell);
-        if (particles.begin() == particles.end())
-          continue;
-        bodies.clear();
-        for (const auto &particle : particles)
-          {
-            const unsigned int body =
-              static_cast<unsigned int>(particle.get_properties()[layout.body]);
-            if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
-              bodies.push_back(body);
-          }
-        const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(cell));
-        for (unsigned int k = 0; k < n_nodes; ++k)
-          for (const unsigned int body : bodies)
-            body_fields.add(nodes[k], body);
-      }
+    // blocks of one colour share no node, so their threads mark different
+    // nodes; the extra (node, body) pairs are collected per range of cells
+    // and sorted by allocate(), so the table does not depend on the threads
+    std::mutex mutex;
+    scatter_colouring.for_each_cell_range([&](const auto begin, const auto end) {
+      std::vector<unsigned int>                          bodies;
+      std::vector<std::pair<unsigned int, unsigned int>> extra;
+      for (auto cell = begin; cell != end; ++cell)
+        {
+          const auto particles = particle_handler->particles_in_cell(*cell);
+          if (particles.begin() == particles.end())
+            continue;
+          bodies.clear();
+          for (const auto &particle : particles)
+            {
+              const unsigned int body =
+                static_cast<unsigned int>(particle.get_properties()[layout.body]);
+              if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
+                bodies.push_back(body);
+            }
+          const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(*cell));
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            for (const unsigned int body : bodies)
+              body_fields.add(nodes[k], body, extra);
+        }
+      if (!extra.empty())
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          body_fields.add_extra_bodies(extra);
+        }
+    });
     body_fields.allocate();
   }
 
@@ -501,77 +515,80 @@ namespace sable::mpm
                   material_extent.get_partitioner()->n_ghost_indices(),
                 std::numeric_limits<double>::max());
 
-    typename Grid<dim>::Shape shape;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        const auto particles = particle_handler->particles_in_cell(cell);
-        if (particles.begin() == particles.end())
-          continue;
-        const typename Grid<dim>::CellData &data = grid.cell_data(cell);
-        const bool near_contact = use_contact && cell_touches_contact(data);
-        for (const auto &particle : particles)
-          {
-            const auto props = particle.get_properties();
-            grid.evaluate(data, particle.get_reference_location(), shape);
-            const double mass = props[layout.mass];
-            if (with_extent)
-              {
-                const Tensor<2, dim> F = ParticleLayout<dim>::deformation_gradient(props);
-                // half the edge of the point's current volume
-                const double half =
-                  0.5 * std::pow(determinant(F) * props[layout.initial_volume], 1. / dim);
-                const Point<dim> x = particle.get_location();
-                for (unsigned int v = 0; v < shape.n_nodes; ++v)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      double *const e = extent + shape.nodes[v] * 2 * dim + 2 * d;
-                      e[0]            = std::min(e[0], x[d] - half);
-                      e[1]            = std::min(e[1], -(x[d] + half));
-                    }
-              }
-            // internal force -V sigma . grad N
-            const Tensor<2, dim> volume_stress =
-              with_forces ? ParticleLayout<dim>::volume_stress(props) : Tensor<2, dim>();
-            if (near_contact)
-              scatter_to_bodies(particle, shape, volume_stress);
-            for (unsigned int v = 0; v < shape.n_nodes; ++v)
-              {
-                double *const node = grid_values + shape.nodes[v] * n_components;
-                const double  weight = mass * shape.values[v];
-                node[0] += weight;
-                for (unsigned int d = 0; d < dim; ++d)
-                  node[1 + d] += weight * props[layout.velocity + d];
-                if (with_forces)
-                  {
-                    const Tensor<1, dim> force = -(volume_stress * shape.gradients[v]);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      node[1 + dim + d] += force[d];
-                  }
-              }
-          }
-      }
-    // ghost particles complete the per-body fields at the nodes of
-    // locally owned cells
-    if (use_contact && parallel)
-      for (const auto &cell : triangulation.active_cell_iterators())
+    // one cell's particles: everything for a locally owned cell, only the
+    // per-body fields for a ghost cell (its particles complete the contact
+    // nodes of locally owned cells)
+    const auto scatter_cell = [&](const typename Triangulation<dim>::active_cell_iterator &cell,
+                                  typename Grid<dim>::Shape &                             shape) {
+      const auto particles = particle_handler->particles_in_cell(cell);
+      if (particles.begin() == particles.end())
+        return;
+      const typename Grid<dim>::CellData &data = grid.cell_data(cell);
+      const bool near_contact = use_contact && cell_touches_contact(data);
+      if (!cell->is_locally_owned())
         {
-          if (!cell->is_ghost())
-            continue;
-          const typename Grid<dim>::CellData &data = grid.cell_data(cell);
-          if (!cell_touches_contact(data))
-            continue;
-          for (const auto &particle : particle_handler->particles_in_cell(cell))
+          if (near_contact)
+            for (const auto &particle : particles)
+              {
+                const auto props = particle.get_properties();
+                grid.evaluate(data, particle.get_reference_location(), shape);
+                scatter_to_bodies(particle,
+                                  shape,
+                                  with_forces ? ParticleLayout<dim>::volume_stress(props) :
+                                                Tensor<2, dim>());
+              }
+          return;
+        }
+      for (const auto &particle : particles)
+        {
+          const auto props = particle.get_properties();
+          grid.evaluate(data, particle.get_reference_location(), shape);
+          const double mass = props[layout.mass];
+          if (with_extent)
             {
-              const auto props = particle.get_properties();
-              grid.evaluate(data, particle.get_reference_location(), shape);
-              scatter_to_bodies(particle,
-                                shape,
-                                with_forces ? ParticleLayout<dim>::volume_stress(props) :
-                                              Tensor<2, dim>());
+              const Tensor<2, dim> F = ParticleLayout<dim>::deformation_gradient(props);
+              // half the edge of the point's current volume
+              const double half =
+                0.5 * std::pow(determinant(F) * props[layout.initial_volume], 1. / dim);
+              const Point<dim> x = particle.get_location();
+              for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    double *const e = extent + shape.nodes[v] * 2 * dim + 2 * d;
+                    e[0]            = std::min(e[0], x[d] - half);
+                    e[1]            = std::min(e[1], -(x[d] + half));
+                  }
+            }
+          // internal force -V sigma . grad N
+          const Tensor<2, dim> volume_stress =
+            with_forces ? ParticleLayout<dim>::volume_stress(props) : Tensor<2, dim>();
+          if (near_contact)
+            scatter_to_bodies(particle, shape, volume_stress);
+          for (unsigned int v = 0; v < shape.n_nodes; ++v)
+            {
+              double *const node   = grid_values + shape.nodes[v] * n_components;
+              const double  weight = mass * shape.values[v];
+              node[0] += weight;
+              for (unsigned int d = 0; d < dim; ++d)
+                node[1 + d] += weight * props[layout.velocity + d];
+              if (with_forces)
+                {
+                  const Tensor<1, dim> force = -(volume_stress * shape.gradients[v]);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    node[1 + dim + d] += force[d];
+                }
             }
         }
+    };
+    // Blocks of cells of one colour share no node: they scatter
+    // concurrently without locks, and each node adds up its contributions
+    // in an order that does not depend on the number of threads (one
+    // thread runs the same order; cell_colouring.h).
+    scatter_colouring.for_each_cell_range([&](const auto begin, const auto end) {
+      typename Grid<dim>::Shape shape;
+      for (auto cell = begin; cell != end; ++cell)
+        scatter_cell(*cell, shape);
+    });
     nodal_data.compress(VectorOperation::add);
     nodal_data.update_ghost_values();
     if (with_extent)
@@ -587,27 +604,33 @@ namespace sable::mpm
   {
     constexpr unsigned int n_components = 1 + 2 * dim;
     const double *const    grid_values  = nodal_data.get_values();
-    const unsigned int     n_nodes      = grid.n_relevant_nodes();
-    for (unsigned int i = 0; i < n_nodes; ++i)
-      {
-        const double *const node = grid_values + i * n_components;
-        const double        mass = node[0];
-        nodal_mass[i]            = mass;
-        for (unsigned int d = 0; d < dim; ++d)
+    // node by node: threads change nothing
+    parallel::apply_to_subranges(
+      0u,
+      grid.n_relevant_nodes(),
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int i = begin; i < end; ++i)
           {
-            const double v = mass > 0. ? node[1 + d] / mass : 0.;
-            if (with_forces)
+            const double *const node = grid_values + i * n_components;
+            const double        mass = node[0];
+            nodal_mass[i]            = mass;
+            for (unsigned int d = 0; d < dim; ++d)
               {
-                old_velocity[i * dim + d] = v;
-                new_velocity[i * dim + d] =
-                  mass > 0. ? v + time_step * (node[1 + dim + d] / mass +
-                                               parameters.gravity[d]) :
-                              0.;
+                const double v = mass > 0. ? node[1 + d] / mass : 0.;
+                if (with_forces)
+                  {
+                    old_velocity[i * dim + d] = v;
+                    new_velocity[i * dim + d] =
+                      mass > 0. ? v + time_step * (node[1 + dim + d] / mass +
+                                                   parameters.gravity[d]) :
+                                  0.;
+                  }
+                else
+                  new_velocity[i * dim + d] = v;
               }
-            else
-              new_velocity[i * dim + d] = v;
           }
-      }
+      },
+      4096);
     double work = 0;
     if (!boundary_conditions.empty())
       {
@@ -633,23 +656,33 @@ namespace sable::mpm
   void
   Simulator<dim>::update_body_velocities(const bool with_forces)
   {
-    for (const unsigned int node : body_fields.get_contact_nodes())
-      {
-        const auto [begin, end] = body_fields.node_records(node);
-        for (auto *r = begin; r != end; ++r)
+    TimerOutput::Scope scope(timer, "contact (in grid update)");
+    // node by node: threads change nothing
+    const std::vector<unsigned int> &contact_nodes = body_fields.get_contact_nodes();
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(contact_nodes.size()),
+      [&](const unsigned int first, const unsigned int last) {
+        for (unsigned int i = first; i < last; ++i)
           {
-            if (r->mass <= 0.)
-              continue;
-            const Tensor<1, dim> velocity = r->momentum / r->mass;
-            if (with_forces)
+            const auto [begin, end] = body_fields.node_records(contact_nodes[i]);
+            for (auto *r = begin; r != end; ++r)
               {
-                r->old_velocity = velocity;
-                r->new_velocity = velocity + time_step * (r->force / r->mass + parameters.gravity);
+                if (r->mass <= 0.)
+                  continue;
+                const Tensor<1, dim> velocity = r->momentum / r->mass;
+                if (with_forces)
+                  {
+                    r->old_velocity = velocity;
+                    r->new_velocity =
+                      velocity + time_step * (r->force / r->mass + parameters.gravity);
+                  }
+                else
+                  r->new_velocity = velocity;
               }
-            else
-              r->new_velocity = velocity;
           }
-      }
+      },
+      256);
     const unsigned int n_owned_nodes =
       nodal_data.get_partitioner()->locally_owned_size() / (1 + 2 * dim);
     if (with_forces ? parameters.contact.on_momentum_update :

@@ -1,10 +1,24 @@
 #!/usr/bin/env python3
-"""Threads do not change MPM results: the same scene (two plastic disks
-colliding with frictional contact, so history variables and per-body fields
-are used) run with one thread, with `--threads 2` and with SABLE_THREADS=3
-writes byte-identical statistics.csv (each material point's stress update
-depends only on its own data). A bad thread count stops with a message
-naming the option."""
+"""Threads do not change MPM results: a scene run with one thread, with
+`--threads 2` and with SABLE_THREADS=3 writes byte-identical statistics.csv.
+The threaded loops are the particle-to-grid scatter and the search for
+contact nodes (blocks of cells coloured so that no two blocks of a colour
+share a node; every node adds its contributions colour by colour, block by
+block, whatever the number of threads), the contact node loop (sums over
+nodes formed in fixed chunks), the nodal updates, the grid-to-particle
+gather and the stress update (each point's own data only).
+
+1. Two plastic disks colliding with frictional contact (history variables,
+   per-body fields, two-body contact nodes).
+2. A pile of four bodies (a box on a friction floor, two plastic disks on it
+   side by side, a third disk dropped between them) under gravity, on a grid
+   refined at body surfaces and contacts every 4 steps, so that cells with
+   hanging nodes scatter through the folded shape functions, and nodes with
+   three bodies occur; pair forces of all six pairs are reported.
+
+A bad thread count stops with a message naming the option."""
+import csv
+import io
 import os
 import subprocess
 
@@ -21,11 +35,11 @@ bodies = [dict(plastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity=
           dict(plastic, Shape="disk", Center="1.255, 0.56", Radius=0.2, Velocity="-5, 0")]
 
 
-def run_with(name, arguments, environment):
+def run_with(name, arguments, environment, scene=(entries, bodies)):
     directory = os.path.join(WORK, name)
     os.makedirs(directory, exist_ok=True)
     with open(os.path.join(directory, "scene.prm"), "w") as f:
-        f.write(prm_text(entries, bodies))
+        f.write(prm_text(*scene))
     env = dict(os.environ, **environment)
     result = subprocess.run([SABLE] + arguments + ["scene.prm"], cwd=directory, capture_output=True,
                             text=True, env=env)
@@ -45,6 +59,37 @@ code, output, three = run_with("three", [], {"SABLE_THREADS": "3"})
 check("SABLE_THREADS=3: runs with three threads", code == 0 and "3 thread(s) per rank" in output,
       output[-300:])
 check("SABLE_THREADS=3: same statistics.csv as one thread", three == one)
+# 2. a pile of four bodies on an adapted grid
+pile_entries = {
+    "Dimension": 2, "Gravity": "0, -9.81", "Time/End time": 0.03, "Grid/Lower corner": "0, 0",
+    "Grid/Upper corner": "1, 1", "Grid/Subdivisions": "20, 20",
+    "Boundary conditions/Types": "0: slip, 1: slip, 2: friction",
+    "Boundary conditions/Friction coefficients": "2: 0.3",
+    "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": 0.3,
+    "Mesh refinement/Criteria": "body surface, contact", "Mesh refinement/Maximum level": 2,
+    "Mesh refinement/Refinement interval": 4, "Output directory": "output",
+}
+elastic = {"Young's modulus": 1e6, "Poisson's ratio": 0.3, "Density": 1000,
+           "Particles per cell direction": 2}
+pile = [dict(elastic, Shape="box", **{"Lower corner": "0.1, 0.0", "Upper corner": "0.9, 0.3"}),
+        dict(plastic, Shape="disk", Center="0.33, 0.45", Radius=0.15, Velocity="0.5, -2"),
+        dict(plastic, Shape="disk", Center="0.67, 0.45", Radius=0.15, Velocity="-0.5, -2"),
+        dict(elastic, Shape="disk", Center="0.5, 0.72", Radius=0.12, Velocity="0, -5")]
+pile_scene = (pile_entries, pile)
+code, output, one = run_with("pile_one", [], {"SABLE_THREADS": ""}, pile_scene)
+check("pile, one thread: runs", code == 0 and "1 thread(s) per rank" in output, output[-300:])
+rows = list(csv.DictReader(io.StringIO(one)))
+cells = {int(r["cells"]) for r in rows}
+check("pile: the grid is adapted (more than the 400 coarse cells, changing)",
+      min(cells) > 400 and len(cells) > 1, f"cell counts {sorted(cells)}")
+forces = [max(abs(float(r[f"contact{a}_{b}_fy"])) for r in rows) for a, b in ((0, 1), (1, 2), (1, 3), (2, 3))]
+check("pile: bodies 0-1, 1-2, 1-3 and 2-3 are in contact", all(f > 0 for f in forces), f"{forces}")
+for name, arguments, environment in (("pile_two", ["--threads", "2"], {}),
+                                     ("pile_three", [], {"SABLE_THREADS": "3"})):
+    code, output, text = run_with(name, arguments, environment, pile_scene)
+    check(f"pile, {name[5:]} threads: same statistics.csv as one thread", code == 0 and text == one,
+          output[-300:])
+
 code, output, _ = run_with("bad", ["--threads", "two"], {})
 check("--threads two: refused with exit code 2", code == 2 and "--threads" in output and "two" in output,
       output[-300:])

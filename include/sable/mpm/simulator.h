@@ -8,6 +8,7 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <sable/mpm/boundaries/boundary_conditions.h>
+#include <sable/mpm/cell_colouring.h>
 #include <sable/mpm/contact/bardenhagen_contact.h>
 #include <sable/mpm/contact/body_fields.h>
 #include <sable/mpm/grid.h>
@@ -202,7 +203,7 @@ namespace sable::mpm
     seed_body(const unsigned int         body_index,
               const OwnedCellStrip<dim> &owned_cells,
               types::particle_index &    next_id);
-    /// Size the nodal vectors for the current grid.
+    /// Size the nodal vectors and colour the cells for the current grid.
     void
     allocate_nodal_data();
     /// Rebuild the grid caches, boundary nodes and nodal vectors after
@@ -213,7 +214,8 @@ namespace sable::mpm
     /// follow through the ParticleHandler, the grid caches are rebuilt.
     void
     adapt_mesh();
-    /// Find the contact nodes of this step (bodies per node).
+    /// Find the contact nodes of this step (bodies per node), threaded
+    /// over the coloured cells as particles_to_grid().
     void
     find_contact_nodes();
     /// Per-body velocities at contact nodes, contact, boundary conditions.
@@ -221,7 +223,8 @@ namespace sable::mpm
     update_body_velocities(const bool with_forces);
     double
     compute_time_step() const;
-    /// Scatter mass, momentum and (if @p with_forces) internal forces.
+    /// Scatter mass, momentum and (if @p with_forces) internal forces;
+    /// threaded over the blocks of each colour of scatter_colouring.
     void
     particles_to_grid(const bool with_forces);
     /// Nodal velocities before (old) and after (new) the momentum update.
@@ -272,6 +275,9 @@ namespace sable::mpm
     ParticleLayout<dim>                              layout;
     std::unique_ptr<Particles::ParticleHandler<dim>> particle_handler;
 
+    /// the cells particles_to_grid() visits, in blocks coloured so that no
+    /// two blocks of a colour share a node; rebuilt with the grid caches
+    CellColouring<dim> scatter_colouring;
     /// mass, momentum (dim), force (dim) per node, node by node
     NodalVector         nodal_data;
     /// extent of the material around each node, 2 dim values per node

@@ -1,4 +1,8 @@
+#include <deal.II/base/parallel.h>
+
 #include <sable/mpm/contact/bardenhagen_contact.h>
+
+#include <algorithm>
 
 #include <cmath>
 #include <limits>
@@ -46,189 +50,243 @@ namespace sable::mpm
                                  const unsigned int                 n_owned_nodes,
                                  const bool                         record_forces)
   {
-    using Record = typename BodyFields<dim>::Record;
+    // Each node changes only its own records, so the nodes run in parallel;
+    // the sums over nodes are formed per fixed chunk of nodes and then added
+    // chunk by chunk, the same way for any number of threads.
+    const std::vector<unsigned int> &nodes    = fields.get_contact_nodes();
+    const unsigned int               n_chunks = (nodes.size() + chunk_size - 1) / chunk_size;
+    chunk_sums.resize(n_chunks);
+    for (ChunkSums &sums : chunk_sums)
+      {
+        sums.frictional_heat = sums.momentum_defect = sums.momentum_correction = 0;
+        sums.pair_forces.assign(pair_forces.size(), Tensor<1, dim>());
+      }
+    parallel::apply_to_subranges(
+      0u,
+      n_chunks,
+      [&](const unsigned int first_chunk, const unsigned int last_chunk) {
+        Scratch scratch;
+        for (unsigned int chunk = first_chunk; chunk < last_chunk; ++chunk)
+          {
+            const unsigned int last =
+              std::min<unsigned int>((chunk + 1) * chunk_size, nodes.size());
+            for (unsigned int i = chunk * chunk_size; i < last; ++i)
+              {
+                const unsigned int node     = nodes[i];
+                const auto [begin, end]     = fields.node_records(node);
+                apply_at_node(begin,
+                              end,
+                              spacing[node],
+                              dt,
+                              node < n_owned_nodes,
+                              record_forces,
+                              scratch,
+                              chunk_sums[chunk]);
+              }
+          }
+      },
+      1);
+
     if (record_forces)
       for (auto &f : pair_forces)
         f = 0;
-
-    // per-body scratch of one node (nodes rarely hold more than a few bodies)
-    std::vector<Tensor<1, dim>> normal, change, own;
-    std::vector<double>         tangential_speed, tangential_change;
-
-    for (const unsigned int node : fields.get_contact_nodes())
+    for (const ChunkSums &sums : chunk_sums)
       {
-        const auto [begin, end] = fields.node_records(node);
-        const unsigned int n    = end - begin;
-        normal.resize(n);
-        change.resize(n);
-        tangential_speed.resize(n);
-        tangential_change.resize(n);
+        frictional_heat += sums.frictional_heat;
+        momentum_defect += sums.momentum_defect;
+        momentum_correction += sums.momentum_correction;
+        if (record_forces)
+          for (unsigned int i = 0; i < pair_forces.size(); ++i)
+            pair_forces[i] += sums.pair_forces[i];
+      }
+  }
 
-        double         total_mass = 0;
-        Tensor<1, dim> total_momentum;
-        for (const Record *r = begin; r != end; ++r)
-          {
-            total_mass += r->mass;
-            total_momentum += r->mass * r->new_velocity;
-          }
-        if (total_mass <= 0)
-          continue;
-        const Tensor<1, dim> centre_of_mass_velocity = total_momentum / total_mass;
+  template <int dim>
+  void
+  BardenhagenContact<dim>::apply_at_node(typename BodyFields<dim>::Record *begin,
+                                         typename BodyFields<dim>::Record *end,
+                                         const Tensor<1, dim> &            spacing,
+                                         const double                      dt,
+                                         const bool                        owned,
+                                         const bool                        record_forces,
+                                         Scratch &                         scratch,
+                                         ChunkSums &                       sums) const
+  {
+    using Record = typename BodyFields<dim>::Record;
+    const unsigned int n = end - begin;
+    auto &normal            = scratch.normal;
+    auto &change            = scratch.change;
+    auto &own               = scratch.own;
+    auto &tangential_speed  = scratch.tangential_speed;
+    auto &tangential_change = scratch.tangential_change;
+    normal.resize(n);
+    change.resize(n);
+    tangential_speed.resize(n);
+    tangential_change.resize(n);
 
-        // outward unit normals: sum_p m_p grad N_i(x_p) points from the
-        // body's particles towards the node, out of the body (it is minus
-        // the gradient of the body's mass density)
+    double         total_mass = 0;
+    Tensor<1, dim> total_momentum;
+    for (const Record *r = begin; r != end; ++r)
+      {
+        total_mass += r->mass;
+        total_momentum += r->mass * r->new_velocity;
+      }
+    if (total_mass <= 0)
+      return;
+    const Tensor<1, dim> centre_of_mass_velocity = total_momentum / total_mass;
+
+    // outward unit normals: sum_p m_p grad N_i(x_p) points from the
+    // body's particles towards the node, out of the body (it is minus
+    // the gradient of the body's mass density)
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        const double norm = begin[a].mass_gradient.norm();
+        normal[a] = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
+      }
+    // weights of the bodies' directions when they are made collinear
+    const auto weight = [&](const unsigned int a) {
+      return parameters.mass_weighted_normals ? begin[a].mass : 1.;
+    };
+    if (n == 2)
+      {
+        Tensor<1, dim> common = weight(0) * normal[0] - weight(1) * normal[1];
+        const double   norm   = common.norm();
+        if (norm == 0)
+          return;
+        common /= norm;
+        normal[0] = common;
+        normal[1] = -common;
+      }
+    else
+      {
+        own = normal;
         for (unsigned int a = 0; a < n; ++a)
           {
-            const double norm = begin[a].mass_gradient.norm();
-            normal[a] = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
+            // minus the mass-weighted mean of the others' directions
+            Tensor<1, dim> others;
+            for (unsigned int b = 0; b < n; ++b)
+              if (b != a)
+                others += begin[b].mass * own[b];
+            others /= std::max(total_mass - begin[a].mass,
+                               std::numeric_limits<double>::min());
+            const double   own_weight =
+              parameters.mass_weighted_normals ?
+                begin[a].mass / std::max(total_mass - begin[a].mass,
+                                         std::numeric_limits<double>::min()) :
+                1.;
+            Tensor<1, dim> combined = own_weight * own[a] - others;
+            const double   norm     = combined.norm();
+            normal[a] = norm > 0 ? combined / norm : Tensor<1, dim>();
           }
-        // weights of the bodies' directions when they are made collinear
-        const auto weight = [&](const unsigned int a) {
-          return parameters.mass_weighted_normals ? begin[a].mass : 1.;
-        };
-        if (n == 2)
+      }
+
+    // release logic: one decision per node at two-body nodes, so that
+    // both bodies change together and momentum is kept
+    const auto traction = [&](const unsigned int a) {
+      return begin[a].mass > 0 ?
+               normal[a] * (begin[a].mass_stress * normal[a]) / begin[a].mass :
+               0.;
+    };
+    bool node_acts = false;
+    if (n == 2)
+      {
+        const double approach =
+          (begin[0].new_velocity - centre_of_mass_velocity) * normal[0];
+        double mean_traction = 0;
+        if (use_traction)
+          mean_traction = (begin[0].mass * traction(0) + begin[1].mass * traction(1)) /
+                          total_mass;
+        node_acts = approach > 0 || mean_traction < 0;
+      }
+
+    double rate = 0;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        const Record &r = begin[a];
+        change[a]           = 0;
+        tangential_speed[a] = tangential_change[a] = 0;
+        const Tensor<1, dim> dv = r.new_velocity - centre_of_mass_velocity;
+        const double         dv_n = dv * normal[a];
+        const bool acts = n == 2 ? node_acts :
+                                   (dv_n > 0 || (use_traction && traction(a) < 0));
+        if (!acts || r.mass <= 0)
+          continue;
+        // friction with the heaviest other body at the node
+        unsigned int other = a == 0 ? 1 : 0;
+        for (unsigned int b = 0; b < n; ++b)
+          if (b != a && begin[b].mass > begin[other].mass)
+            other = b;
+        const double mu = parameters.friction_between(body_groups[r.body],
+                                                      body_groups[begin[other].body]);
+        const Tensor<1, dim> dv_t = dv - dv_n * normal[a];
+        const double         speed_t = dv_t.norm();
+        tangential_speed[a] = speed_t;
+        if (std::isinf(mu))
           {
-            Tensor<1, dim> common = weight(0) * normal[0] - weight(1) * normal[1];
-            const double   norm   = common.norm();
-            if (norm == 0)
-              continue;
-            common /= norm;
-            normal[0] = common;
-            normal[1] = -common;
+            change[a]            = -dv; // stick: move with the centre of mass
+            tangential_change[a] = speed_t;
           }
         else
           {
-            own = normal;
-            for (unsigned int a = 0; a < n; ++a)
-              {
-                // minus the mass-weighted mean of the others' directions
-                Tensor<1, dim> others;
-                for (unsigned int b = 0; b < n; ++b)
-                  if (b != a)
-                    others += begin[b].mass * own[b];
-                others /= std::max(total_mass - begin[a].mass,
-                                   std::numeric_limits<double>::min());
-                const double   own_weight =
-                  parameters.mass_weighted_normals ?
-                    begin[a].mass / std::max(total_mass - begin[a].mass,
-                                             std::numeric_limits<double>::min()) :
-                    1.;
-                Tensor<1, dim> combined = own_weight * own[a] - others;
-                const double   norm     = combined.norm();
-                normal[a] = norm > 0 ? combined / norm : Tensor<1, dim>();
-              }
+            // friction is bounded by the compressive normal impulse:
+            // when the 2001 release holds separating bodies together
+            // (dv_n < 0) that impulse pulls, and gives no friction
+            const double tau = std::min(mu * std::max(dv_n, 0.), speed_t);
+            change[a]        = -dv_n * normal[a];
+            if (speed_t > 0)
+              change[a] -= (tau / speed_t) * dv_t;
+            tangential_change[a] = tau;
           }
-
-        // release logic: one decision per node at two-body nodes, so that
-        // both bodies change together and momentum is kept
-        const auto traction = [&](const unsigned int a) {
-          return begin[a].mass > 0 ?
-                   normal[a] * (begin[a].mass_stress * normal[a]) / begin[a].mass :
-                   0.;
-        };
-        bool node_acts = false;
-        if (n == 2)
-          {
-            const double approach =
-              (begin[0].new_velocity - centre_of_mass_velocity) * normal[0];
-            double mean_traction = 0;
-            if (use_traction)
-              mean_traction = (begin[0].mass * traction(0) + begin[1].mass * traction(1)) /
-                              total_mass;
-            node_acts = approach > 0 || mean_traction < 0;
-          }
-
-        double rate = 0;
-        for (unsigned int a = 0; a < n; ++a)
-          {
-            const Record &r = begin[a];
-            change[a]           = 0;
-            tangential_speed[a] = tangential_change[a] = 0;
-            const Tensor<1, dim> dv = r.new_velocity - centre_of_mass_velocity;
-            const double         dv_n = dv * normal[a];
-            const bool acts = n == 2 ? node_acts :
-                                       (dv_n > 0 || (use_traction && traction(a) < 0));
-            if (!acts || r.mass <= 0)
-              continue;
-            // friction with the heaviest other body at the node
-            unsigned int other = a == 0 ? 1 : 0;
-            for (unsigned int b = 0; b < n; ++b)
-              if (b != a && begin[b].mass > begin[other].mass)
-                other = b;
-            const double mu = parameters.friction_between(body_groups[r.body],
-                                                          body_groups[begin[other].body]);
-            const Tensor<1, dim> dv_t = dv - dv_n * normal[a];
-            const double         speed_t = dv_t.norm();
-            tangential_speed[a] = speed_t;
-            if (std::isinf(mu))
-              {
-                change[a]            = -dv; // stick: move with the centre of mass
-                tangential_change[a] = speed_t;
-              }
-            else
-              {
-                // friction is bounded by the compressive normal impulse:
-                // when the 2001 release holds separating bodies together
-                // (dv_n < 0) that impulse pulls, and gives no friction
-                const double tau = std::min(mu * std::max(dv_n, 0.), speed_t);
-                change[a]        = -dv_n * normal[a];
-                if (speed_t > 0)
-                  change[a] -= (tau / speed_t) * dv_t;
-                tangential_change[a] = tau;
-              }
-            // the cell-collapse rate of paper 002 section 2.2
-            const double mass_ratio = std::max(r.mass / std::max(total_mass - r.mass,
-                                                                 std::numeric_limits<double>::min()),
-                                               1.);
-            for (unsigned int d = 0; d < dim; ++d)
-              rate = std::max(rate, mass_ratio * std::abs(change[a][d]) / spacing[node][d]);
-          }
-
-        double scale = 1;
-        if (parameters.impulse_scaling > 0 && rate * dt > parameters.impulse_scaling)
-          scale = parameters.impulse_scaling / (rate * dt);
-
-        const bool     owned = node < n_owned_nodes;
-        Tensor<1, dim> defect;
-        for (unsigned int a = 0; a < n; ++a)
-          {
-            Record &r = begin[a];
-            r.new_velocity += scale * change[a];
-            if (record_forces)
-              {
-                r.normal        = normal[a];
-                r.contact_force = r.mass * scale * change[a] / dt;
-                r.state         = change[a].norm() == 0 ? 0 :
-                                  tangential_change[a] < tangential_speed[a] ? 2 : 1;
-              }
-            if (!owned)
-              continue;
-            defect += r.mass * scale * change[a];
-            momentum_correction += r.mass * scale * change[a].norm();
-            // frictional work: the tangential impulse m tau times the slip
-            // speed left after it, |dv_t| - tau (zero while sticking); at
-            // a two-body node the sum over both bodies is the impulse times
-            // the relative slip speed (only in the pass whose changes reach
-            // the particles)
-            const double tau = scale * tangential_change[a];
-            if (record_forces)
-              frictional_heat += r.mass * tau * (tangential_speed[a] - tau);
-            if (record_forces && n >= 2)
-              for (unsigned int b = 0; b < n; ++b)
-                if (b != a)
-                  {
-                    const unsigned int index = pair_index(r.body, begin[b].body);
-                    if (index == BodyFields<dim>::invalid)
-                      continue;
-                    // split among the other bodies by their mass
-                    const double share = begin[b].mass / (total_mass - r.mass);
-                    pair_forces[index] += share * r.mass * scale * change[a] / dt;
-                  }
-          }
-        if (owned)
-          momentum_defect += defect.norm();
+        // the cell-collapse rate of paper 002 section 2.2
+        const double mass_ratio = std::max(r.mass / std::max(total_mass - r.mass,
+                                                             std::numeric_limits<double>::min()),
+                                           1.);
+        for (unsigned int d = 0; d < dim; ++d)
+          rate = std::max(rate, mass_ratio * std::abs(change[a][d]) / spacing[d]);
       }
+
+    double scale = 1;
+    if (parameters.impulse_scaling > 0 && rate * dt > parameters.impulse_scaling)
+      scale = parameters.impulse_scaling / (rate * dt);
+
+    Tensor<1, dim> defect;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        Record &r = begin[a];
+        r.new_velocity += scale * change[a];
+        if (record_forces)
+          {
+            r.normal        = normal[a];
+            r.contact_force = r.mass * scale * change[a] / dt;
+            r.state         = change[a].norm() == 0 ? 0 :
+                              tangential_change[a] < tangential_speed[a] ? 2 : 1;
+          }
+        if (!owned)
+          continue;
+        defect += r.mass * scale * change[a];
+        sums.momentum_correction += r.mass * scale * change[a].norm();
+        // frictional work: the tangential impulse m tau times the slip
+        // speed left after it, |dv_t| - tau (zero while sticking); at
+        // a two-body node the sum over both bodies is the impulse times
+        // the relative slip speed (only in the pass whose changes reach
+        // the particles)
+        const double tau = scale * tangential_change[a];
+        if (record_forces)
+          sums.frictional_heat += r.mass * tau * (tangential_speed[a] - tau);
+        if (record_forces && n >= 2)
+          for (unsigned int b = 0; b < n; ++b)
+            if (b != a)
+              {
+                const unsigned int index = pair_index(r.body, begin[b].body);
+                if (index == BodyFields<dim>::invalid)
+                  continue;
+                // split among the other bodies by their mass
+                const double share = begin[b].mass / (total_mass - r.mass);
+                sums.pair_forces[index] += share * r.mass * scale * change[a] / dt;
+              }
+      }
+    if (owned)
+      sums.momentum_defect += defect.norm();
   }
 
   template class BardenhagenContact<2>;

@@ -62,6 +62,38 @@ namespace sable::mpm
     std::vector<Tensor<1, dim>> pair_forces;
 
   private:
+    /// What one chunk of contact nodes adds to the running sums above.
+    struct ChunkSums
+    {
+      double                      frictional_heat     = 0;
+      double                      momentum_defect     = 0;
+      double                      momentum_correction = 0;
+      std::vector<Tensor<1, dim>> pair_forces;
+    };
+
+    /// Per-body scratch of one node (nodes rarely hold more than a few
+    /// bodies), one per thread.
+    struct Scratch
+    {
+      std::vector<Tensor<1, dim>> normal, change, own;
+      std::vector<double>         tangential_speed, tangential_change;
+    };
+
+    /// Contact nodes per chunk of the threaded loop; fixed, so that the
+    /// sums, added chunk by chunk, do not depend on the number of threads.
+    static constexpr unsigned int chunk_size = 256;
+
+    /// Contact at one node: changes only that node's records.
+    void
+    apply_at_node(typename BodyFields<dim>::Record *begin,
+                  typename BodyFields<dim>::Record *end,
+                  const Tensor<1, dim> &            spacing,
+                  const double                      dt,
+                  const bool                        owned,
+                  const bool                        record_forces,
+                  Scratch &                         scratch,
+                  ChunkSums &                       sums) const;
+
     const ContactParameters   parameters;
     std::vector<unsigned int> body_groups;
     /// index into pair_forces of the pair (a, b), a < b; or invalid
@@ -70,6 +102,8 @@ namespace sable::mpm
 
     unsigned int
     pair_index(const unsigned int a, const unsigned int b) const;
+
+    std::vector<ChunkSums> chunk_sums;
   };
 } // namespace sable::mpm
 

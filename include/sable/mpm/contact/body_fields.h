@@ -54,11 +54,30 @@ namespace sable::mpm
     void
     add(const unsigned int node, const unsigned int body)
     {
+      add(node, body, extra_bodies);
+    }
+
+    /// As add(), for threads that never add to the same node at the same
+    /// time (cells of one colour): the pairs beyond a node's first body go
+    /// to the caller's @p extra, handed over by add_extra_bodies(). The
+    /// table does not depend on the order of the pairs (allocate() sorts).
+    void
+    add(const unsigned int                                   node,
+        const unsigned int                                   body,
+        std::vector<std::pair<unsigned int, unsigned int>> &extra)
+    {
       unsigned int &first = first_body[node];
       if (first == invalid)
         first = body;
       else if (first != body)
-        extra_bodies.emplace_back(node, body);
+        extra.emplace_back(node, body);
+    }
+
+    /// Not thread-safe: one thread at a time.
+    void
+    add_extra_bodies(const std::vector<std::pair<unsigned int, unsigned int>> &extra)
+    {
+      extra_bodies.insert(extra_bodies.end(), extra.begin(), extra.end());
     }
 
     /// Create the zeroed records of all contact nodes.
