@@ -363,10 +363,11 @@ namespace
     unsigned int       held  = start.network.pairs.size() + start.network.wall_contacts.size();
     const unsigned int most  = dealii::Utilities::MPI::max(held, MPI_COMM_WORLD);
     if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      std::cout << "ranks,contacts_on_busiest_rank,evaluation_ms,increment_s,iterations,pi,"
-                   "gradient_norm,stress_change_z\n"
+      std::cout << "ranks,contacts_on_busiest_rank,evaluation_ms,increment_s,iterations,"
+                   "evaluations,pi,gradient_norm,stress_change_z\n"
                 << ranks << ',' << most << ',' << 1e3 * evaluation << ',' << o.seconds << ','
-                << o.result.iterations << ',' << std::setprecision(17) << pi << ','
+                << o.result.iterations << ',' << o.result.evaluations << ','
+                << std::setprecision(17) << pi << ','
                 << gradient.l2_norm() << ',' << o.d_stress[2] << std::endl;
   }
 

@@ -13,7 +13,9 @@
 #  - the cell and particle costs behind the partition weights: the full box
 #    against a box in 1/16 of the same grid, one rank;
 #  - QuSGM: one evaluation of Pi and grad Pi and one increment with 1 and 2
-#    threads (qusgm_benchmark threads), bit-identity of the results.
+#    threads (qusgm_benchmark threads), bit-identity of the results; the
+#    same on 1 and 2 MPI ranks (qusgm_benchmark ranks, after the threads
+#    runs have put the pack in the cache).
 # Usage: contrib/benchmarks/scaling/run.sh [build dir] [QuSGM grains = 2740]
 #        [QuSGM pack cache = /tmp/qusgm-cache] [repetitions = 3]
 # With QUIET_WAIT=<seconds>, each repetition first waits up to that long for
@@ -156,5 +158,13 @@ done
 for r in $(seq "$repeats"); do
   echo "# QuSGM run $r (load $(load), $(wait_quiet))"
   "$build/contrib/benchmarks/qusgm_benchmark" threads "$cache" "$grains" 2
+done
+
+# QuSGM on MPI ranks (Pi, |grad Pi| and the stress change must be the same)
+for r in $(seq "$repeats"); do
+  echo "# QuSGM ranks run $r (load $(load), $(wait_quiet))"
+  for np in 1 2; do
+    "${mpirun[@]}" -np "$np" "$build/contrib/benchmarks/qusgm_benchmark" ranks "$cache" "$grains" | tail -n 1
+  done
 done
 echo "# load after: $(cut -d' ' -f1-3 /proc/loadavg)"
