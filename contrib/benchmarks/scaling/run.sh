@@ -22,6 +22,7 @@
 # a second of at least 90% idle CPU (other users' jobs) and prints what it saw.
 # Needs the `benchmarks` target built (cmake --build build --target benchmarks).
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/machine.sh"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
 grains="${2:-2740}"
@@ -74,26 +75,8 @@ end
 PRM
 }
 
-seconds() { grep -o 'in [0-9.e+-]* s wall time' "$1" | awk '{print $2}'; }
 ratio() { python3 -c "print(f'{$1/$2:.2f}')"; }
 minimum() { python3 -c "import sys; print(min(map(float, sys.argv[1:])))" "$@"; }
-load() { cut -d' ' -f1 /proc/loadavg; }
-idle() { # percentage of idle CPU time over the next second, all cores
-  local a b
-  a=($(head -1 /proc/stat)); sleep 1; b=($(head -1 /proc/stat))
-  local total=0 i
-  for i in 1 2 3 4 5 6 7 8; do total=$((total + b[i] - a[i])); done
-  echo $(( 100 * (b[4] - a[4]) / (total > 0 ? total : 1) ))
-}
-wait_quiet() { # on a shared machine: wait up to QUIET_WAIT s (default 0)
-  # for a second with at least 90% idle CPU; print the idle percentage seen
-  local waited=0 i
-  i=$(idle)
-  while [ "$i" -lt 90 ] && [ "$waited" -lt "${QUIET_WAIT:-0}" ]; do
-    sleep 4; waited=$((waited + 5)); i=$(idle)
-  done
-  echo "$i% idle"
-}
 split() { # the TimerOutput rows of a log, as "name time"
   grep -E '^\| (particles to grid|grid to particles|stress update|grid update|sort particles)' "$1" |
     awk -F'|' '{gsub(/^ +| +$/, "", $2); gsub(/s$/, "", $4); printf "%s=%s  ", $2, $4}'

@@ -12,6 +12,7 @@
 # With QUIET_WAIT=<seconds>, each 1-thread/2-thread pair first waits up to
 # that long for a second of at least 90% idle CPU and prints what it saw.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/machine.sh"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
 repeats="${2:-3}"
@@ -79,21 +80,6 @@ PY
 section() { # log, name: the wall time of a TimerOutput section
   grep -E "^\| $2 " "$1" | awk -F'|' '{gsub(/ /, "", $4); sub(/s$/, "", $4); print $4}' | head -1
 }
-idle() { # percentage of idle CPU time over the next second, all cores
-  local a b total=0 i
-  a=($(head -1 /proc/stat)); sleep 1; b=($(head -1 /proc/stat))
-  for i in 1 2 3 4 5 6 7 8; do total=$((total + b[i] - a[i])); done
-  echo $(( 100 * (b[4] - a[4]) / (total > 0 ? total : 1) ))
-}
-wait_quiet() { # up to QUIET_WAIT s (default 0) for a second with >= 90% idle CPU
-  local waited=0 i
-  i=$(idle)
-  while [ "$i" -lt 90 ] && [ "$waited" -lt "${QUIET_WAIT:-0}" ]; do
-    sleep 4; waited=$((waited + 5)); i=$(idle)
-  done
-  echo "$i% idle"
-}
-seconds() { grep -o 'in [0-9.e+-]* s wall time' "$1" | awk '{print $2}'; }
 
 echo "# $(nproc) cores, load before: $(cut -d' ' -f1-3 /proc/loadavg);" \
   "commit $(git -C "$root" rev-parse --short HEAD)"
