@@ -63,13 +63,19 @@ def key(point):
     return tuple(round(x, 12) for x in point)
 
 
+def series(out, stem):
+    """The stem_NNNNN.h5 files in `out`, and the times and .h5 files that
+    stem.xdmf lists."""
+    files = sorted(f for f in os.listdir(out) if f.startswith(stem + "_") and f.endswith(".h5"))
+    with open(os.path.join(out, stem + ".xdmf")) as f:
+        xdmf = f.read()
+    times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', xdmf)]
+    return files, times, re.findall(r'([\w.-]+\.h5):/nodes', xdmf)
+
+
 def check_grid(what, out, rows, times, ranks, n_points, total_mass, g, adaptive=False):
     """The grid files of a run of a body falling freely from rest."""
-    grid_files = sorted(f for f in os.listdir(out) if f.startswith("grid_") and f.endswith(".h5"))
-    with open(os.path.join(out, "grid.xdmf")) as f:
-        xdmf = f.read()
-    grid_times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', xdmf)]
-    referenced = re.findall(r'([\w.-]+\.h5):/nodes', xdmf)
+    grid_files, grid_times, referenced = series(out, "grid")
     check(f"{what}: grid.xdmf has one entry per grid_NNNNN.h5, at the particle output times",
           referenced == grid_files and grid_times == times, f"{len(grid_files)} files, times {grid_times}")
     worst_mass = worst_v = worst_duplicate = 0.0
@@ -140,11 +146,7 @@ for ranks in (1, 2):
     _, output, rows = run(name, entries, [body], ranks=ranks)
     out = os.path.join(WORK, name, "output")
     check(f"{ranks} rank(s): the console names particles.xdmf", "particles.xdmf" in output)
-    h5_files = sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5"))
-    with open(os.path.join(out, "particles.xdmf")) as f:
-        xdmf = f.read()
-    times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', xdmf)]
-    referenced = re.findall(r'([\w.-]+\.h5):/nodes', xdmf)
+    h5_files, times, referenced = series(out, "particles")
     check(f"{ranks} rank(s): one xdmf entry per .h5 file, each referencing it",
           len(h5_files) >= 5 and referenced == h5_files and len(times) == len(h5_files),
           f"{len(h5_files)} files, xdmf references {referenced}, {len(times)} times")
