@@ -6,6 +6,7 @@
 
 #include <sable/base/checkpoint_directory.h>
 #include <sable/mpm/checkpoint.h>
+#include <sable/mpm/run_state.h>
 #include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/simulator.h>
 
@@ -47,7 +48,7 @@ namespace sable::mpm
     {
       /// 3: the grid's base level and the grid output series (checkpoints
       /// of format 1 and 2 have a coarse mesh of every subdivision cell)
-      unsigned int          format         = 3;
+      unsigned int          format         = 4;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
       unsigned int          n_properties   = 0;
@@ -56,19 +57,7 @@ namespace sable::mpm
       unsigned int          base_level     = 0;
       std::vector<double>   grid_box;
       unsigned long long    n_particles  = 0;
-      unsigned int          step_number  = 0;
-      double                time         = 0;
-      double                time_step    = 0;
-      double                max_signal_speed        = 0;
-      double                boundary_work           = 0;
-      double                initial_energy          = 0;
-      double                initial_gravity_energy  = 0;
-      double                energy_floor            = 0;
-      double                largest_gravity_release = 0;
-      double                next_output_time        = 0;
-      unsigned int          output_counter          = 0;
-      unsigned int          adaptations_without_change = 0;
-      double                travel_since_adaptation    = 0;
+      RunState              run;
       bool                  with_contact            = false;
       double                frictional_heat         = 0;
       double                momentum_defect         = 0;
@@ -85,9 +74,7 @@ namespace sable::mpm
       serialize(Archive &ar, const unsigned int)
       {
         ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
-        ar &n_particles &step_number &time &time_step &max_signal_speed &boundary_work;
-        ar &initial_energy &initial_gravity_energy &energy_floor &largest_gravity_release;
-        ar &next_output_time &output_counter &adaptations_without_change &travel_since_adaptation;
+        ar &n_particles &run;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction &pair_forces;
         ar &particle_files &contact_node_files &xdmf_entries;
         ar &grid_files &grid_xdmf_entries;
@@ -169,19 +156,7 @@ namespace sable::mpm
     state.base_level              = base_level;
     state.grid_box                = grid_box(triangulation);
     state.n_particles             = particle_handler->n_global_particles();
-    state.step_number             = step_number;
-    state.time                    = time;
-    state.time_step               = time_step;
-    state.max_signal_speed        = max_signal_speed;
-    state.boundary_work           = boundary_work;
-    state.initial_energy          = initial_energy;
-    state.initial_gravity_energy  = initial_gravity_energy;
-    state.energy_floor            = energy_floor;
-    state.largest_gravity_release = largest_gravity_release;
-    state.next_output_time        = next_output_time;
-    state.output_counter          = output_counter;
-    state.adaptations_without_change = adaptations_without_change;
-    state.travel_since_adaptation    = travel_since_adaptation;
+    state.run                     = this->state;
     state.particle_files          = particle_series.files;
     state.contact_node_files      = contact_node_files;
     state.xdmf_entries            = particle_series.xdmf_entries;
@@ -194,10 +169,10 @@ namespace sable::mpm
       {
         // per-rank sums, kept on rank 0 after a restart
         state.with_contact        = true;
-        state.frictional_heat     = Utilities::MPI::sum(contact->frictional_heat, communicator);
-        state.momentum_defect     = Utilities::MPI::sum(contact->momentum_defect, communicator);
-        state.momentum_correction = Utilities::MPI::sum(contact->momentum_correction, communicator);
-        for (const auto &force : contact->pair_forces)
+        state.frictional_heat     = Utilities::MPI::sum(contact->get_model().frictional_heat, communicator);
+        state.momentum_defect     = Utilities::MPI::sum(contact->get_model().momentum_defect, communicator);
+        state.momentum_correction = Utilities::MPI::sum(contact->get_model().momentum_correction, communicator);
+        for (const auto &force : contact->get_model().pair_forces)
           state.pair_forces.push_back(Utilities::MPI::sum(force, communicator));
       }
 
@@ -252,7 +227,7 @@ namespace sable::mpm
       return "cannot resume from '" + directory + "': it holds a scene with " + what + " " +
              saved + ", the parameter file gives " + now;
     };
-    require(state.format == 3 && state.dimension == dim,
+    require(state.format == 4 && state.dimension == dim,
             mismatch("format/dimension",
                      std::to_string(state.format) + "/" + std::to_string(state.dimension),
                      "3 (this version of sable)/" + std::to_string(dim)));
@@ -307,19 +282,7 @@ namespace sable::mpm
               std::to_string(particle_handler->n_global_particles()) + " were read");
 
     const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
-    step_number             = state.step_number;
-    time                    = state.time;
-    time_step               = state.time_step;
-    max_signal_speed        = state.max_signal_speed;
-    boundary_work           = state.boundary_work;
-    initial_energy          = state.initial_energy;
-    initial_gravity_energy  = state.initial_gravity_energy;
-    energy_floor            = state.energy_floor;
-    largest_gravity_release = state.largest_gravity_release;
-    next_output_time        = state.next_output_time;
-    output_counter          = state.output_counter;
-    adaptations_without_change = state.adaptations_without_change;
-    travel_since_adaptation    = state.travel_since_adaptation;
+    this->state                  = state.run;
     particle_series.files        = state.particle_files;
     contact_node_files           = state.contact_node_files;
     particle_series.xdmf_entries = state.xdmf_entries;
@@ -331,12 +294,12 @@ namespace sable::mpm
     if (contact && state.with_contact)
       {
         // the sums over ranks continue on rank 0
-        contact->frictional_heat     = root ? state.frictional_heat : 0.;
-        contact->momentum_defect     = root ? state.momentum_defect : 0.;
-        contact->momentum_correction = root ? state.momentum_correction : 0.;
-        if (state.pair_forces.size() == contact->pair_forces.size())
+        contact->get_model().frictional_heat     = root ? state.frictional_heat : 0.;
+        contact->get_model().momentum_defect     = root ? state.momentum_defect : 0.;
+        contact->get_model().momentum_correction = root ? state.momentum_correction : 0.;
+        if (state.pair_forces.size() == contact->get_model().pair_forces.size())
           for (unsigned int i = 0; i < state.pair_forces.size(); ++i)
-            contact->pair_forces[i] = root ? state.pair_forces[i] : Tensor<1, dim>();
+            contact->get_model().pair_forces[i] = root ? state.pair_forces[i] : Tensor<1, dim>();
       }
 
     // statistics.csv: the rows up to the checkpoint, then this run's
@@ -347,7 +310,7 @@ namespace sable::mpm
           const fs::path file = fs::path(parameters.output_directory) / "statistics.csv";
           if (fs::exists(file))
             {
-              truncate_statistics(file, step_number, parameters.statistics_interval, finished());
+              truncate_statistics(file, this->state.step_number, parameters.statistics_interval, finished());
               append = true;
             }
         });
@@ -356,7 +319,7 @@ namespace sable::mpm
     setup_output(append);
 
     pcout << "sable MPM " << dim << "D: resumed from " << directory << " at step "
-          << step_number << ", t = " << time << ": " << triangulation.n_global_active_cells()
+          << this->state.step_number << ", t = " << this->state.time << ": " << triangulation.n_global_active_cells()
           << " cells, " << particle_handler->n_global_particles() << " material points, "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s)" << std::endl;
     if (parallel)

@@ -8,17 +8,19 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <sable/mpm/boundaries/boundary_conditions.h>
-#include <sable/mpm/cell_colouring.h>
-#include <sable/mpm/contact/bardenhagen_contact.h>
-#include <sable/mpm/contact/body_fields.h>
+#include <sable/mpm/contact/multi_body_contact.h>
 #include <sable/mpm/grid.h>
+#include <sable/mpm/grid_to_particle.h>
+#include <sable/mpm/load_balance.h>
 #include <sable/mpm/materials/material.h>
 #include <sable/mpm/mesh_refinement.h>
-#include <sable/mpm/owned_cell_strip.h>
+#include <sable/mpm/nodal_fields.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
+#include <sable/mpm/particle_to_grid.h>
 #include <sable/mpm/postprocess/output_series.h>
 #include <sable/mpm/postprocess/statistics.h>
+#include <sable/mpm/run_state.h>
 
 #include <memory>
 #include <string>
@@ -41,10 +43,10 @@ namespace sable::mpm
    *   simulator.add_body(body);        // or parameters.bodies
    *   simulator.run();                 // or initialize() + step() ...
    *
-   * One step, with only what the scene enabled:
-   * particles_to_grid -> momentum update (+ gravity) -> boundary conditions
-   * -> grid_to_particles (FLIP/PIC velocity, position) -> stress update
-   * (USL; MUSL remaps momenta first) -> sort particles -> statistics/output.
+   * step() sequences the phases of one step (doc/architecture.md), each
+   * an object of its own file: the particle-to-grid and grid-to-particle
+   * transfers (cell loops), the nodal fields, the multi-body contact (an
+   * assembler in those loops), the stress update, the sort, adaptation.
    */
   template <int dim>
   class Simulator
@@ -100,20 +102,20 @@ namespace sable::mpm
     double
     get_time() const
     {
-      return time;
+      return state.time;
     }
 
     unsigned int
     get_step_number() const
     {
-      return step_number;
+      return state.step_number;
     }
 
     /// Length of the last step.
     double
     get_time_step() const
     {
-      return time_step;
+      return state.time_step;
     }
 
     const Particles::ParticleHandler<dim> &
@@ -143,14 +145,14 @@ namespace sable::mpm
     const BardenhagenContact<dim> *
     get_contact() const
     {
-      return contact.get();
+      return contact ? &contact->get_model() : nullptr;
     }
 
     /// Total work done by moving walls so far.
     double
     get_boundary_work() const
     {
-      return boundary_work;
+      return state.boundary_work;
     }
 
     /**
@@ -173,19 +175,58 @@ namespace sable::mpm
     std::pair<unsigned long long, unsigned long long>
     particles_per_rank() const;
 
-    /**
-     * Partition weights (p4est cell weights, integers): a cell costs
-     * cell_cost, each material point in it particle_cost more. From the
-     * 2D step time on one core (doc/benchmarks.md, eight measurements on
-     * a shared machine: 0.03-0.24 us per cell, 0.24-0.68 us per material
-     * point per step, ratio 1.6-26, median 6.5): 100 : 600.
-     */
-    static constexpr unsigned int cell_cost     = 100;
-    static constexpr unsigned int particle_cost = 600;
+    /// Partition weights: see LoadBalance.
+    static constexpr unsigned int cell_cost     = LoadBalance<dim>::cell_cost;
+    static constexpr unsigned int particle_cost = LoadBalance<dim>::particle_cost;
 
   private:
-    using NodalVector = LinearAlgebra::distributed::Vector<double>;
+    using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
 
+    // --- the phases of step(), in order ---
+    double
+    compute_time_step() const;
+    /// The locally owned cells holding material points.
+    CellList
+    collect_cells_with_particles() const;
+    /// Find the contact nodes, then scatter mass, momentum and internal
+    /// forces to the single field and the bodies' fields.
+    void
+    scatter_momenta_and_forces();
+    /// Old and new nodal velocities, walls, contact.
+    void
+    update_nodal_velocities();
+    /// USL: velocities, positions and velocity gradients in one pass.
+    void
+    update_particles_and_strain_rates();
+    /// MUSL: velocities and positions from the updated nodal velocities ...
+    void
+    update_particle_velocities_and_positions();
+    /// ... the updated particle momenta back to the grid ...
+    void
+    remap_momenta_to_grid();
+    /// ... with the walls' and the contact's conditions ...
+    void
+    update_remapped_velocities();
+    /// ... and the velocity gradients from them.
+    void
+    compute_strain_rates();
+    /// F and stress of every point from its velocity gradient.
+    void
+    update_stresses();
+    void
+    sort_particles();
+    void
+    advance_time();
+    /// Every 'Refinement interval' steps, or (interval 0) when a point may
+    /// have moved half of the smallest cell since the last adaptation.
+    bool
+    adaptation_due() const;
+    /// Refine and coarsen the grid by the scene's criteria; particles
+    /// follow through the ParticleHandler, the grid caches are rebuilt.
+    void
+    adapt_mesh();
+
+    // --- set-up ---
     /// The bodies' materials, the contact model and the refinement
     /// criteria (initialize() and resume()).
     void
@@ -199,61 +240,25 @@ namespace sable::mpm
     /// Whether the end time or the step limit is reached.
     bool
     finished() const;
-    void
-    seed_body(const unsigned int         body_index,
-              const OwnedCellStrip<dim> &owned_cells,
-              types::particle_index &    next_id);
-    /// Size the nodal vectors and colour the cells for the current grid.
+    /// Size the nodal fields and colour the cells for the current grid.
     void
     allocate_nodal_data();
-    /// Rebuild the grid caches, boundary nodes and nodal vectors after
+    /// Rebuild the grid caches, boundary nodes and nodal fields after
     /// the triangulation changed (refinement, repartitioning).
     void
     setup_after_mesh_change();
-    /// Refine and coarsen the grid by the scene's criteria; particles
-    /// follow through the ParticleHandler, the grid caches are rebuilt.
+
+    // --- reports and output ---
+    /// The speeds and failures a grid-to-particle pass found.
     void
-    adapt_mesh();
-    /// Find the contact nodes of this step (bodies per node), threaded
-    /// over the coloured cells as particles_to_grid().
-    void
-    find_contact_nodes();
-    /// Per-body velocities at contact nodes, contact, boundary conditions.
-    void
-    update_body_velocities(const bool with_forces);
-    double
-    compute_time_step() const;
-    /// Scatter mass, momentum and (if @p with_forces) internal forces;
-    /// threaded over the blocks of each colour of scatter_colouring.
-    void
-    particles_to_grid(const bool with_forces);
-    /// Nodal velocities before (old) and after (new) the momentum update.
-    void
-    update_grid_velocities(const bool with_forces);
-    /// USL: velocity, position, and stress in one pass over the particles.
-    void
-    grid_to_particles(const bool update_positions, const bool update_stresses);
-    /// The locally owned cells holding material points.
-    std::vector<typename Triangulation<dim>::active_cell_iterator>
-    cells_with_particles() const;
-    /// F and stress of every locally owned particle in @p cells from the
-    /// velocity gradients grid_to_particles() stored; threaded over cells.
-    void
-    update_particle_stresses(
-      const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells);
+    process_report(const typename GridToParticle<dim>::Report &report);
     /// Console line: material points, cells and work per rank (min .. max).
     void
     print_balance() const;
-    unsigned int
-    cell_weight(const typename Triangulation<dim>::cell_iterator &cell,
-                const typename Triangulation<dim>::CellStatus     status) const;
-    void
-    sort_particles();
     /// Particle output, with the contact nodes and the grid if asked for.
     void
     write_particles();
-    void
-    write_contact_nodes(const unsigned int counter);
+    /// Stop if kinetic + strain energy exceed the energy guard's limit.
     void
     check_energy(const Statistics<dim> &statistics);
     /// Stop all ranks if any flagged a problem at @p location.
@@ -267,6 +272,8 @@ namespace sable::mpm
     MPI_Comm                                   communicator;
     ConditionalOStream                         pcout;
     mutable TimerOutput                        timer;
+    bool                                       parallel = false;
+    bool                                       initialized = false;
 
     Grid<dim>                                        grid;
     BoundaryConditions<dim>                          boundary_conditions;
@@ -274,59 +281,34 @@ namespace sable::mpm
     std::vector<double>                              body_wave_speed;
     ParticleLayout<dim>                              layout;
     std::unique_ptr<Particles::ParticleHandler<dim>> particle_handler;
-
-    /// the cells particles_to_grid() visits, in blocks coloured so that no
-    /// two blocks of a colour share a node; rebuilt with the grid caches
-    CellColouring<dim> scatter_colouring;
-    /// mass, momentum (dim), force (dim) per node, node by node
-    NodalVector         nodal_data;
-    /// extent of the material around each node, 2 dim values per node
-    /// (BoundaryConditions::set_material_extent()); only with friction
-    /// walls that check for material
-    NodalVector         material_extent;
-    std::vector<double> nodal_mass;
-    std::vector<double> old_velocity;
-    std::vector<double> new_velocity;
-    /// per locally owned particle (by local index): L = grad v of the
-    /// strain update, from grid_to_particles() to update_particle_stresses()
-    std::vector<Tensor<2, dim>> velocity_gradients;
-    bool                has_gravity = false;
-    boost::signals2::connection weight_connection;
+    LoadBalance<dim>                                 load_balance;
     /// level of the coarsest cells at the start (see make_grid())
     unsigned int base_level = 0;
 
+    // the step's phases and their data
+    NodalFields<dim>    nodal_fields;
+    ParticleToGrid<dim> particle_to_grid;
+    /// per locally owned particle (by local index): L = grad v of the
+    /// strain update, from the grid-to-particle pass to the stress update
+    std::vector<Tensor<2, dim>> velocity_gradients;
+    GridToParticle<dim>         grid_to_particle;
+    /// the locally owned cells with material points, collected per step
+    CellList cells_with_particles;
     /// multi-body contact: only with a contact model and two or more bodies
-    bool                                     use_contact = false;
-    BodyFields<dim>                          body_fields;
-    std::unique_ptr<BardenhagenContact<dim>> contact;
-    bool                                     parallel = false;
-
+    std::unique_ptr<MultiBodyContact<dim>> contact;
     /// only with refinement criteria
     std::unique_ptr<MeshRefinement<dim>> mesh_refinement;
-    unsigned int                         adaptations_without_change = 0;
-    double                               travel_since_adaptation    = 0;
 
-    bool         initialized = false;
-    double       time        = 0;
-    double       time_step   = 0;
-    unsigned int step_number = 0;
-    double       max_signal_speed = 0;
-    double       boundary_work    = 0;
-    double       initial_energy   = 0;
-    double       initial_gravity_energy = 0;
-    double       energy_floor           = 0;
-    double       largest_gravity_release = 0;
+    RunState state;
 
     unsigned long long lost_particles = 0;
     Point<dim>         lost_location;
 
-    std::unique_ptr<StatisticsFile<dim>>              statistics_file;
-    OutputSeries                                      particle_series;
-    std::vector<std::pair<double, std::string>>       contact_node_files;
+    std::unique_ptr<StatisticsFile<dim>>        statistics_file;
+    OutputSeries                                particle_series;
+    std::vector<std::pair<double, std::string>> contact_node_files;
     /// only with Output/Grid output
-    std::unique_ptr<GridOutput<dim>>                  grid_output;
-    double                                            next_output_time = 0;
-    unsigned int                                      output_counter   = 0;
+    std::unique_ptr<GridOutput<dim>> grid_output;
   };
 } // namespace sable::mpm
 

@@ -2,6 +2,7 @@
 #include <deal.II/base/geometry_info.h>
 
 #include <sable/mpm/boundaries/boundary_conditions.h>
+#include <sable/mpm/contact/coulomb.h>
 
 #include <algorithm>
 #include <cmath>
@@ -89,26 +90,19 @@ namespace sable::mpm
                   }
                 return held;
               }
-            // SPEC step 6 with the wall as the other body: act only
-            // while the node approaches the wall
-            const double approach = c.sign * v[c.direction];
-            if (approach <= 0.)
-              return -1.;
-            double tangential_norm2 = 0;
+            // SPEC step 6 with the wall (at rest) as the other body: act
+            // only while the node approaches the wall
+            Tensor<1, dim> velocity, normal;
             for (unsigned int d = 0; d < dim; ++d)
-              if (d != c.direction)
-                tangential_norm2 += v[d] * v[d];
-            const double tangential = std::sqrt(tangential_norm2);
-            double       reduction  = 1.;
-            if (tangential > 0.)
-              {
-                reduction = std::min(wall.friction * approach, tangential) / tangential;
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (d != c.direction)
-                    v[d] -= reduction * v[d];
-              }
-            v[c.direction] = 0.;
-            return reduction;
+              velocity[d] = v[d];
+            normal[c.direction] = c.sign;
+            if (velocity * normal <= 0.)
+              return -1.;
+            const CoulombCorrection<dim> correction =
+              coulomb_correction(velocity, normal, wall.friction);
+            for (unsigned int d = 0; d < dim; ++d)
+              v[d] += correction.change[d];
+            return correction.tangential_fraction();
           }
         case BoundaryType::free:
           return -1.;

@@ -1,6 +1,7 @@
 #include <deal.II/base/parallel.h>
 
 #include <sable/mpm/contact/bardenhagen_contact.h>
+#include <sable/mpm/contact/coulomb.h>
 
 #include <algorithm>
 
@@ -218,25 +219,10 @@ namespace sable::mpm
             other = b;
         const double mu = parameters.friction_between(body_groups[r.body],
                                                       body_groups[begin[other].body]);
-        const Tensor<1, dim> dv_t = dv - dv_n * normal[a];
-        const double         speed_t = dv_t.norm();
-        tangential_speed[a] = speed_t;
-        if (std::isinf(mu))
-          {
-            change[a]            = -dv; // stick: move with the centre of mass
-            tangential_change[a] = speed_t;
-          }
-        else
-          {
-            // friction is bounded by the compressive normal impulse:
-            // when the 2001 release holds separating bodies together
-            // (dv_n < 0) that impulse pulls, and gives no friction
-            const double tau = std::min(mu * std::max(dv_n, 0.), speed_t);
-            change[a]        = -dv_n * normal[a];
-            if (speed_t > 0)
-              change[a] -= (tau / speed_t) * dv_t;
-            tangential_change[a] = tau;
-          }
+        const CoulombCorrection<dim> correction = coulomb_correction(dv, normal[a], mu);
+        change[a]                               = correction.change;
+        tangential_speed[a]                     = correction.tangential_speed;
+        tangential_change[a]                    = correction.tangential_change;
         // the cell-collapse rate of paper 002 section 2.2
         const double mass_ratio = std::max(r.mass / std::max(total_mass - r.mass,
                                                              std::numeric_limits<double>::min()),

@@ -1,3 +1,5 @@
+#include <deal.II/base/mpi.h>
+
 #include <sable/mpm/postprocess/statistics.h>
 
 #include <iomanip>
@@ -89,6 +91,117 @@ namespace sable::mpm
     file->flush();
   }
 
+  template <int dim>
+  Statistics<dim>
+  compute_statistics(const Triangulation<dim> &                    triangulation,
+                     const Particles::ParticleHandler<dim> &       particle_handler,
+                     const ParticleLayout<dim> &                   layout,
+                     const std::vector<std::unique_ptr<Material>> &materials,
+                     const Tensor<1, dim> &                        gravity,
+                     const BardenhagenContact<dim> *               contact)
+  {
+    const MPI_Comm communicator = triangulation.get_communicator();
+    const unsigned int n_bodies = materials.size();
+    // kinetic, strain, gravity, momentum (dim), per body: mass, m x, m v
+    // per body: mass, m x (dim), m v (dim), angular momentum about the
+    // origin (3), inertia tensor about the origin (9)
+    constexpr unsigned int per_body = 1 + 2 * dim + 3 + 9;
+    const unsigned int     n_values = 3 + dim + n_bodies * per_body;
+    std::vector<double>    sums(n_values, 0.);
+    for (const auto &particle : particle_handler)
+      {
+        const auto         props = particle.get_properties();
+        const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+        const double       mass  = props[layout.mass];
+        const Point<dim>   x     = particle.get_location();
+        double             v2    = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          v2 += props[layout.velocity + d] * props[layout.velocity + d];
+        sums[0] += 0.5 * mass * v2;
+        sums[1] += props[layout.initial_volume] *
+                   materials[body]->strain_energy_density(
+                     ParticleLayout<dim>::stress_tensor(props),
+                     embed_in_3d<dim>(ParticleLayout<dim>::deformation_gradient(props), 1.));
+        sums[2] -= mass * (gravity * x);
+        double *const body_sums = &sums[3 + dim + body * per_body];
+        body_sums[0] += mass;
+        Tensor<1, 3> r, v;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            sums[3 + d] += mass * props[layout.velocity + d];
+            body_sums[1 + d] += mass * x[d];
+            body_sums[1 + dim + d] += mass * props[layout.velocity + d];
+            r[d] = x[d];
+            v[d] = props[layout.velocity + d];
+          }
+        const Tensor<1, 3> angular = mass * cross_product_3d(r, v);
+        for (unsigned int d = 0; d < 3; ++d)
+          body_sums[1 + 2 * dim + d] += angular[d];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            body_sums[4 + 2 * dim + 3 * i + j] += mass * ((i == j ? r * r : 0.) - r[i] * r[j]);
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+
+    Statistics<dim> s;
+    s.kinetic_energy = sums[0];
+    s.strain_energy  = sums[1];
+    s.gravity_energy = sums[2];
+    for (unsigned int d = 0; d < dim; ++d)
+      s.momentum[d] = sums[3 + d];
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const double *const body_sums = &sums[3 + dim + b * per_body];
+        const double        mass      = body_sums[0];
+        s.body_mass.push_back(mass);
+        Point<dim>     x;
+        Tensor<1, dim> v;
+        Tensor<1, 3>   x3, v3, angular;
+        Tensor<2, 3>   inertia;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            x[d] = x3[d] = body_sums[1 + d] / mass;
+            v[d] = v3[d] = body_sums[1 + dim + d] / mass;
+          }
+        s.body_position.push_back(x);
+        s.body_velocity.push_back(v);
+        // shift angular momentum and inertia to the centre of mass:
+        // L_c = L_o - M x_c x v_c, I_c = I_o - M (|x_c|^2 1 - x_c x_c)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            angular[i] = body_sums[1 + 2 * dim + i];
+            for (unsigned int j = 0; j < 3; ++j)
+              inertia[i][j] = body_sums[4 + 2 * dim + 3 * i + j] -
+                              mass * ((i == j ? x3 * x3 : 0.) - x3[i] * x3[j]);
+          }
+        angular -= mass * cross_product_3d(x3, v3);
+        Tensor<1, 3> omega;
+        if (dim == 2)
+          omega[2] = inertia[2][2] > 0 ? angular[2] / inertia[2][2] : 0.;
+        else if (determinant(inertia) > 0)
+          omega = invert(inertia) * angular;
+        s.body_angular_velocity.push_back(omega);
+      }
+    s.n_particles = particle_handler.n_global_particles();
+    s.n_cells     = triangulation.n_global_active_cells();
+    if (contact != nullptr)
+      {
+        s.contact_heat = Utilities::MPI::sum(contact->frictional_heat, communicator);
+        for (const auto &force : contact->pair_forces)
+          s.pair_forces.push_back(Utilities::MPI::sum(force, communicator));
+      }
+    return s;
+  }
+
   template class StatisticsFile<2>;
   template class StatisticsFile<3>;
+#define SABLE_INSTANTIATE(dim)                                                              \
+  template Statistics<dim> compute_statistics<dim>(const Triangulation<dim> &, const Particles::ParticleHandler<dim> &, \
+                                                   const ParticleLayout<dim> &,             \
+                                                   const std::vector<std::unique_ptr<Material>> &, \
+                                                   const Tensor<1, dim> &,                  \
+                                                   const BardenhagenContact<dim> *);
+  SABLE_INSTANTIATE(2)
+  SABLE_INSTANTIATE(3)
+#undef SABLE_INSTANTIATE
 } // namespace sable::mpm

@@ -105,6 +105,15 @@ namespace sable::mpm
       return *r;
     }
 
+    const Record &
+    record(const unsigned int node, const unsigned int body) const
+    {
+      const Record *r = &records[first_record[node]];
+      while (r->body != body)
+        ++r;
+      return *r;
+    }
+
     const std::vector<unsigned int> &
     get_contact_nodes() const
     {
@@ -116,6 +125,14 @@ namespace sable::mpm
     node_records(const unsigned int node)
     {
       Record *const begin = &records[first_record[node]];
+      return {begin, begin + n_records[node]};
+    }
+
+    /// Records of contact node @p node: [begin, end).
+    std::pair<const Record *, const Record *>
+    node_records(const unsigned int node) const
+    {
+      const Record *const begin = &records[first_record[node]];
       return {begin, begin + n_records[node]};
     }
 

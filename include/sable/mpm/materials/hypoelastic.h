@@ -6,10 +6,10 @@
 namespace sable::mpm
 {
   /// Linear hypoelasticity with the Jaumann stress rate; no history.
-  class Hypoelastic : public Material
+  class Hypoelastic final : public BatchedMaterial<Hypoelastic>
   {
   public:
-    using Material::Material;
+    using BatchedMaterial<Hypoelastic>::BatchedMaterial;
 
     void
     update_stress(const Tensor<2, 3> &   L,

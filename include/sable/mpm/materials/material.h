@@ -7,10 +7,52 @@
 #include <sable/mpm/parameters.h>
 
 #include <memory>
+#include <vector>
 
 namespace sable::mpm
 {
   using namespace dealii;
+
+  /// A dim x dim tensor as 3 x 3 (plane strain in 2D: zeros off the plane,
+  /// @p diagonal_fill in the zz entry: 0 for L, 1 for F).
+  template <int dim>
+  inline Tensor<2, 3>
+  embed_in_3d(const Tensor<2, dim> &a, const double diagonal_fill)
+  {
+    Tensor<2, 3> result;
+    for (unsigned int i = 0; i < 3; ++i)
+      result[i][i] = diagonal_fill;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        result[i][j] = a[i][j];
+    return result;
+  }
+
+  /// The points of one body in one cell, as update_stresses() takes them:
+  /// velocity and deformation gradients (3D, see Material), and where each
+  /// point's stress and history are.
+  struct MaterialPointBatch
+  {
+    std::vector<Tensor<2, 3>>            L;
+    std::vector<Tensor<2, 3>>            F;
+    std::vector<SymmetricTensor<2, 3> *> stress;
+    std::vector<double *>                history;
+
+    unsigned int
+    size() const
+    {
+      return L.size();
+    }
+
+    void
+    clear()
+    {
+      L.clear();
+      F.clear();
+      stress.clear();
+      history.clear();
+    }
+  };
 
   /**
    * A constitutive model. Kinematics are always three-dimensional: in 2D
@@ -50,6 +92,14 @@ namespace sable::mpm
                   SymmetricTensor<2, 3> & stress,
                   double *                history) const = 0;
 
+    /**
+     * update_stress() for a batch of points of one body (the points of one
+     * cell): one virtual call per batch, the model's own update inlined in
+     * the loop (BatchedMaterial).
+     */
+    virtual void
+    update_stresses(const MaterialPointBatch &batch, const double dt) const = 0;
+
     /// Stored elastic energy per unit reference volume.
     virtual double
     strain_energy_density(const SymmetricTensor<2, 3> &stress,
@@ -77,6 +127,24 @@ namespace sable::mpm
     jaumann_elastic_update(const Tensor<2, 3> &          L,
                            const double                  dt,
                            const SymmetricTensor<2, 3> &stress) const;
+  };
+
+  /// Implements Material::update_stresses() for a final model class
+  /// @p Model by calling its update_stress() directly (no virtual call per
+  /// point).
+  template <typename Model>
+  class BatchedMaterial : public Material
+  {
+  public:
+    using Material::Material;
+
+    void
+    update_stresses(const MaterialPointBatch &batch, const double dt) const final
+    {
+      const Model &model = static_cast<const Model &>(*this);
+      for (unsigned int p = 0; p < batch.size(); ++p)
+        model.Model::update_stress(batch.L[p], batch.F[p], dt, *batch.stress[p], batch.history[p]);
+    }
   };
 
   /// Create the model named in @p parameters.model.

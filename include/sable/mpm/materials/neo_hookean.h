@@ -11,10 +11,10 @@ namespace sable::mpm
    * W = (K/4)(J^2 - 1) - (K/2) ln J + (G/2)(J^(-2/3) tr(F F^T) - 3).
    * The stress follows from F alone: no history.
    */
-  class NeoHookean : public Material
+  class NeoHookean final : public BatchedMaterial<NeoHookean>
   {
   public:
-    using Material::Material;
+    using BatchedMaterial<NeoHookean>::BatchedMaterial;
 
     void
     update_stress(const Tensor<2, 3> &   L,

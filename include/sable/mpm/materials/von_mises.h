@@ -11,10 +11,10 @@ namespace sable::mpm
    * surface sqrt(3/2 s:s) = sigma_y0 + H eps_p. The one history variable is
    * the equivalent plastic strain eps_p.
    */
-  class VonMises : public Material
+  class VonMises final : public BatchedMaterial<VonMises>
   {
   public:
-    using Material::Material;
+    using BatchedMaterial<VonMises>::BatchedMaterial;
 
     unsigned int
     n_history() const override

@@ -3,6 +3,11 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <sable/mpm/contact/bardenhagen_contact.h>
+#include <sable/mpm/materials/material.h>
+#include <sable/mpm/particle_layout.h>
 
 #include <fstream>
 #include <memory>
@@ -64,6 +69,19 @@ namespace sable::mpm
     std::unique_ptr<std::ofstream> file;
     bool                           with_contact = false;
   };
+  /**
+   * Energies, momentum and per-body centre of mass, velocity and angular
+   * velocity of the material points over all ranks (collective), and, with
+   * @p contact, its frictional heat and reported pair forces.
+   */
+  template <int dim>
+  Statistics<dim>
+  compute_statistics(const Triangulation<dim> &                    triangulation,
+                     const Particles::ParticleHandler<dim> &       particle_handler,
+                     const ParticleLayout<dim> &                   layout,
+                     const std::vector<std::unique_ptr<Material>> &materials,
+                     const Tensor<1, dim> &                        gravity,
+                     const BardenhagenContact<dim> *               contact);
 } // namespace sable::mpm
 
 #endif

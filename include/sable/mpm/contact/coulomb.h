@@ -1,0 +1,66 @@
+#ifndef sable_mpm_contact_coulomb_h
+#define sable_mpm_contact_coulomb_h
+
+#include <deal.II/base/tensor.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sable::mpm
+{
+  using namespace dealii;
+
+  /// What coulomb_correction() does to one velocity.
+  template <int dim>
+  struct CoulombCorrection
+  {
+    /// the velocity change
+    Tensor<1, dim> change;
+    /// |dv_t| before the correction, and how much of it was removed
+    double tangential_speed  = 0;
+    double tangential_change = 0;
+
+    /// The fraction of the tangential velocity removed (1 without any).
+    double
+    tangential_fraction() const
+    {
+      return tangential_speed > 0 ? tangential_change / tangential_speed : 1.;
+    }
+  };
+
+  /**
+   * The Coulomb correction of SPEC Part A step 6, shared by body-body
+   * contact and friction walls: of a velocity @p relative_velocity relative
+   * to the other side (the centre of mass of a contact node, or a wall at
+   * rest) with outward unit normal @p normal, remove the normal part
+   * dv_n = dv . n and as much of the tangential part dv_t as Coulomb allows,
+   * tau = min(mu max(dv_n, 0), |dv_t|): friction is bounded by the
+   * compressive normal impulse, and a separating velocity (dv_n < 0) gives
+   * none. mu = infinity sticks (the whole relative velocity is removed).
+   */
+  template <int dim>
+  inline CoulombCorrection<dim>
+  coulomb_correction(const Tensor<1, dim> &relative_velocity,
+                     const Tensor<1, dim> &normal,
+                     const double          mu)
+  {
+    CoulombCorrection<dim> result;
+    const double           dv_n = relative_velocity * normal;
+    const Tensor<1, dim>   dv_t = relative_velocity - dv_n * normal;
+    result.tangential_speed     = dv_t.norm();
+    if (std::isinf(mu))
+      {
+        result.change            = -relative_velocity;
+        result.tangential_change = result.tangential_speed;
+        return result;
+      }
+    const double tau = std::min(mu * std::max(dv_n, 0.), result.tangential_speed);
+    result.change    = -dv_n * normal;
+    if (result.tangential_speed > 0)
+      result.change -= (tau / result.tangential_speed) * dv_t;
+    result.tangential_change = tau;
+    return result;
+  }
+} // namespace sable::mpm
+
+#endif

@@ -1,0 +1,151 @@
+#ifndef sable_mpm_contact_multi_body_contact_h
+#define sable_mpm_contact_multi_body_contact_h
+
+#include <deal.II/base/array_view.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <sable/mpm/boundaries/boundary_conditions.h>
+#include <sable/mpm/cell_colouring.h>
+#include <sable/mpm/contact/bardenhagen_contact.h>
+#include <sable/mpm/contact/body_fields.h>
+#include <sable/mpm/grid.h>
+#include <sable/mpm/grid_pass.h>
+#include <sable/mpm/particle_layout.h>
+
+namespace sable::mpm
+{
+  /**
+   * The multi-velocity-field contact of a scene with two or more bodies, as
+   * an assembler over the cells of the particle-to-grid and grid-to-particle
+   * loops (DESIGN.md, "Assemblers over cells"). It owns the per-body nodal
+   * fields (BodyFields: records only at contact nodes) and the contact
+   * kernel, and plugs into the transfers through four calls:
+   *
+   * - mark_contact_nodes(): once per step, before the first scatter, the
+   *   nodes whose cells hold points of two or more bodies;
+   * - touches() and scatter(): a particle's share of its body's field at
+   *   the contact nodes of its cell (its mass, momentum and, in the
+   *   momentum-update pass, internal force, mass gradient and stress);
+   * - correct_velocities(): per pass, the bodies' nodal velocities, the
+   *   contact correction and the walls' conditions on them;
+   * - velocities(): what a particle reads back from its body's field.
+   */
+  template <int dim>
+  class MultiBodyContact
+  {
+  public:
+    using Record = typename BodyFields<dim>::Record;
+
+    MultiBodyContact(const ContactParameters &        parameters,
+                     const std::vector<unsigned int> &body_groups);
+
+    /// Find this step's contact nodes (bodies per node) and create their
+    /// zeroed records; threaded over the cells of @p colouring.
+    void
+    mark_contact_nodes(const CellColouring<dim> &             colouring,
+                       const Particles::ParticleHandler<dim> &particle_handler,
+                       const Grid<dim> &                      grid,
+                       const ParticleLayout<dim> &            layout);
+
+    /// Zero the records' mass, momentum and force for a second scatter
+    /// (MUSL's remapped momenta) on the same contact nodes.
+    void
+    begin_remap()
+    {
+      fields.zero_momenta();
+    }
+
+    /// Whether a cell with nodes @p nodes has a contact node.
+    bool
+    touches(const std::pair<const unsigned int *, unsigned int> &nodes) const
+    {
+      for (unsigned int k = 0; k < nodes.second; ++k)
+        if (fields.is_contact_node(nodes.first[k]))
+          return true;
+      return false;
+    }
+
+    /// Scatter one particle's share into its body's records at the contact
+    /// nodes of @p shape. Cells of one colour may call this concurrently.
+    template <GridPass pass>
+    void
+    scatter(const ArrayView<const double> &   properties,
+            const typename Grid<dim>::Shape &shape,
+            const Tensor<2, dim> &            volume_stress)
+    {
+      const unsigned int body = static_cast<unsigned int>(properties[ParticleLayout<dim>::body]);
+      const double       mass = properties[ParticleLayout<dim>::mass];
+      for (unsigned int v = 0; v < shape.n_nodes; ++v)
+        {
+          if (!fields.is_contact_node(shape.nodes[v]))
+            continue;
+          Record &     record = fields.record(shape.nodes[v], body);
+          const double weight = mass * shape.values[v];
+          record.mass += weight;
+          for (unsigned int d = 0; d < dim; ++d)
+            record.momentum[d] += weight * properties[ParticleLayout<dim>::velocity + d];
+          if constexpr (pass == GridPass::momentum_update)
+            {
+              record.force -= volume_stress * shape.gradients[v];
+              record.mass_gradient += mass * shape.gradients[v];
+              if (with_traction)
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = i; j < dim; ++j)
+                    record.mass_stress[i][j] +=
+                      weight * properties[ParticleLayout<dim>::stress +
+                                          ParticleLayout<dim>::stress_component(i, j)];
+            }
+        }
+    }
+
+    /**
+     * The bodies' velocities at every contact node from their momenta
+     * (and, in the momentum-update pass, forces and @p gravity over
+     * @p time_step), then the contact correction if the scene applies it
+     * in this pass, then the walls' conditions. @p n_owned_nodes: the
+     * locally owned nodes come first; only they count in the sums.
+     */
+    template <GridPass pass>
+    void
+    correct_velocities(const Grid<dim> &              grid,
+                       const BoundaryConditions<dim> &boundary_conditions,
+                       const Tensor<1, dim> &         gravity,
+                       const double                   time_step,
+                       const unsigned int             n_owned_nodes);
+
+    /// The record of @p body at @p node if @p node is a contact node, else
+    /// nullptr: a particle then reads the single field.
+    const Record *
+    velocities(const unsigned int node, const unsigned int body) const
+    {
+      return fields.is_contact_node(node) ? &fields.record(node, body) : nullptr;
+    }
+
+    const BodyFields<dim> &
+    get_fields() const
+    {
+      return fields;
+    }
+
+    /// The contact kernel, with its running sums (heat, pair forces).
+    BardenhagenContact<dim> &
+    get_model()
+    {
+      return model;
+    }
+
+    const BardenhagenContact<dim> &
+    get_model() const
+    {
+      return model;
+    }
+
+  private:
+    const ContactParameters parameters;
+    const bool              with_traction;
+    BodyFields<dim>         fields;
+    BardenhagenContact<dim> model;
+  };
+} // namespace sable::mpm
+
+#endif

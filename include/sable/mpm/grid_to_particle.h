@@ -1,0 +1,106 @@
+#ifndef sable_mpm_grid_to_particle_h
+#define sable_mpm_grid_to_particle_h
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <sable/mpm/contact/multi_body_contact.h>
+#include <sable/mpm/grid.h>
+#include <sable/mpm/nodal_fields.h>
+#include <sable/mpm/particle_layout.h>
+
+#include <vector>
+
+namespace sable::mpm
+{
+  /**
+   * The grid-to-particle transfer (SPEC Part A steps 9-10) as a threaded
+   * loop over the cells with material points: each point reads the nodal
+   * velocities of its body (its body's record at a contact node, the single
+   * field elsewhere) and updates its velocity (FLIP with a PIC fraction)
+   * and position, or stores its velocity gradient L = sum v_i grad N_i for
+   * the stress update, or both in one pass (USL). Each point changes only
+   * its own data, so threads change nothing.
+   */
+  template <int dim>
+  class GridToParticle
+  {
+  public:
+    using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
+
+    /// What a pass found: the largest signal and point speeds (this rank),
+    /// and the lowest-id point that failed (not finite, or moved more than
+    /// a cell).
+    struct Report
+    {
+      double                max_signal_speed   = 0;
+      double                max_particle_speed = 0;
+      bool                  not_finite         = false;
+      bool                  too_far            = false;
+      types::particle_index failed_id          = numbers::invalid_unsigned_int;
+      Point<dim>            failure_location;
+
+      void
+      fail(const bool distance, const types::particle_index id, const Point<dim> &x);
+      void
+      merge(const Report &other);
+    };
+
+    GridToParticle(const Grid<dim> &                 grid,
+                   const NodalFields<dim> &          fields,
+                   const std::vector<double> &       body_wave_speed,
+                   std::vector<Tensor<2, dim>> &     velocity_gradients)
+      : grid(grid)
+      , fields(fields)
+      , body_wave_speed(body_wave_speed)
+      , velocity_gradients(velocity_gradients)
+    {}
+
+    /// New velocities v = (1 - alpha)(v + sum N (v_new - v_old)) +
+    /// alpha sum N v_new and positions x += dt sum N v_new.
+    Report
+    update_velocities_and_positions(Particles::ParticleHandler<dim> &particle_handler,
+                                    const CellList &                 cells,
+                                    const MultiBodyContact<dim> *    contact,
+                                    const double                     time_step,
+                                    const double                     pic_fraction) const
+    {
+      return transfer<true, false>(particle_handler, cells, contact, time_step, pic_fraction);
+    }
+
+    /// The velocity gradients of the strain update (by local index).
+    Report
+    compute_strain_rates(Particles::ParticleHandler<dim> &particle_handler,
+                         const CellList &                 cells,
+                         const MultiBodyContact<dim> *    contact) const
+    {
+      return transfer<false, true>(particle_handler, cells, contact, 0., 0.);
+    }
+
+    /// Both in one pass, from the same nodal velocities (USL).
+    Report
+    update_particles_and_strain_rates(Particles::ParticleHandler<dim> &particle_handler,
+                                      const CellList &                 cells,
+                                      const MultiBodyContact<dim> *    contact,
+                                      const double                     time_step,
+                                      const double                     pic_fraction) const
+    {
+      return transfer<true, true>(particle_handler, cells, contact, time_step, pic_fraction);
+    }
+
+  private:
+    template <bool update_positions, bool update_strain_rates>
+    Report
+    transfer(Particles::ParticleHandler<dim> &particle_handler,
+             const CellList &                 cells,
+             const MultiBodyContact<dim> *    contact,
+             const double                     time_step,
+             const double                     pic_fraction) const;
+
+    const Grid<dim> &            grid;
+    const NodalFields<dim> &     fields;
+    const std::vector<double> &  body_wave_speed;
+    std::vector<Tensor<2, dim>> &velocity_gradients;
+  };
+} // namespace sable::mpm
+
+#endif

@@ -1,0 +1,113 @@
+#ifndef sable_mpm_nodal_fields_h
+#define sable_mpm_nodal_fields_h
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <sable/mpm/boundaries/boundary_conditions.h>
+#include <sable/mpm/grid.h>
+#include <sable/mpm/grid_pass.h>
+
+#include <vector>
+
+namespace sable::mpm
+{
+  /**
+   * The single velocity field on the grid nodes (SPEC Part A steps 1-2 and
+   * 8): what the particle-to-grid pass scatters (mass, momentum, internal
+   * force, stored node by node with ghost entries under MPI), and the nodal
+   * velocities computed from it before (old) and after (new) the momentum
+   * update, with the walls' conditions applied.
+   */
+  template <int dim>
+  class NodalFields
+  {
+  public:
+    using NodalVector = LinearAlgebra::distributed::Vector<double>;
+
+    /// values per node in scattered(): mass, momentum (dim), force (dim)
+    static constexpr unsigned int n_components = 1 + 2 * dim;
+
+    /// Size every field for @p grid's nodes; with @p with_material_extent
+    /// also the material extent a friction wall with material contact
+    /// reads (BoundaryConditions::set_material_extent()).
+    void
+    reinit(const Grid<dim> &grid, const bool with_material_extent);
+
+    /// Zero what a particle-to-grid pass adds to (the extent: to +max).
+    template <GridPass pass>
+    void
+    zero();
+
+    /// Add the ghost nodes' contributions to their owners and send the
+    /// sums back (collective).
+    template <GridPass pass>
+    void
+    compress();
+
+    /**
+     * The nodal velocities: in the momentum-update pass v_old = p/m and
+     * v_new = v_old + dt (f/m + g), then the walls' conditions (returns the
+     * work the moving walls did, summed over ranks); in the remap pass
+     * v_new = p/m with the conditions the walls imposed in the update.
+     */
+    template <GridPass pass>
+    double
+    compute_velocities(BoundaryConditions<dim> &boundary_conditions,
+                       const Tensor<1, dim> &   gravity,
+                       const double             time_step);
+
+    /// Locally owned nodes (they come before the ghost nodes).
+    unsigned int
+    n_owned_nodes() const
+    {
+      return scattered.get_partitioner()->locally_owned_size() / n_components;
+    }
+
+    /// Locally owned plus ghost nodes.
+    unsigned int
+    n_relevant_nodes() const
+    {
+      return mass.size();
+    }
+
+    /// n_components values per relevant node.
+    double *
+    scattered_values()
+    {
+      return scattered.get_values();
+    }
+
+    /// 2 dim values per relevant node, or nullptr without friction walls
+    /// that check for material.
+    double *
+    material_extent_values()
+    {
+      return material_extent.size() > 0 ? material_extent.get_values() : nullptr;
+    }
+
+    const std::vector<double> &
+    get_mass() const
+    {
+      return mass;
+    }
+    const std::vector<double> &
+    get_old_velocity() const
+    {
+      return old_velocity;
+    }
+    const std::vector<double> &
+    get_new_velocity() const
+    {
+      return new_velocity;
+    }
+
+  private:
+    NodalVector         scattered;
+    NodalVector         material_extent;
+    std::vector<double> mass;
+    std::vector<double> old_velocity;
+    std::vector<double> new_velocity;
+  };
+} // namespace sable::mpm
+
+#endif

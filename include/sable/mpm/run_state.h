@@ -1,0 +1,69 @@
+#ifndef sable_mpm_run_state_h
+#define sable_mpm_run_state_h
+
+#include <algorithm>
+
+namespace sable::mpm
+{
+  /**
+   * Where a run is and what it has accumulated: time and step, the signal
+   * speed for the next time step, the energy bookkeeping of the energy
+   * guard, the output schedule and the adaptation schedule. Everything a
+   * checkpoint must restore beyond the mesh and the material points is
+   * here or in the output series and the contact sums, and serialize()
+   * is the one list of it.
+   */
+  struct RunState
+  {
+    double       time        = 0;
+    double       time_step   = 0;
+    unsigned int step_number = 0;
+    /// largest c + |v| over the points, for the next time step
+    double max_signal_speed = 0;
+
+    /// work done by moving walls so far
+    double boundary_work = 0;
+    /// kinetic + strain energy and gravitational energy at the start
+    double initial_energy         = 0;
+    double initial_gravity_energy = 0;
+    /// 1e-14 sum m c^2: energies below it are round-off
+    double energy_floor = 0;
+    /// the largest release of gravitational energy so far
+    double largest_gravity_release = 0;
+
+    double       next_output_time = 0;
+    unsigned int output_counter   = 0;
+
+    unsigned int adaptations_without_change = 0;
+    /// how far the fastest point travelled since the last adaptation
+    double travel_since_adaptation = 0;
+
+    /**
+     * The energy a scene can hold: the initial energy plus the largest
+     * release of gravitational energy so far and the work of moving walls
+     * (a body rising again after a bounce gives no new energy). Call with
+     * the current gravitational energy.
+     */
+    double
+    energy_budget(const double gravity_energy)
+    {
+      largest_gravity_release =
+        std::max(largest_gravity_release, initial_gravity_energy - gravity_energy);
+      return initial_energy + largest_gravity_release + std::max(boundary_work, 0.) +
+             energy_floor;
+    }
+
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      ar &time &time_step &step_number &max_signal_speed;
+      ar &boundary_work &initial_energy &initial_gravity_energy &energy_floor &
+        largest_gravity_release;
+      ar &next_output_time &output_counter;
+      ar &adaptations_without_change &travel_since_adaptation;
+    }
+  };
+} // namespace sable::mpm
+
+#endif

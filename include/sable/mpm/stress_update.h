@@ -1,0 +1,54 @@
+#ifndef sable_mpm_stress_update_h
+#define sable_mpm_stress_update_h
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <sable/mpm/materials/material.h>
+#include <sable/mpm/particle_layout.h>
+
+#include <memory>
+#include <vector>
+
+namespace sable::mpm
+{
+  /**
+   * The strain and stress update (SPEC Part A step 11): F <- (I + dt L) F
+   * and the material's stress update, from the velocity gradients the
+   * grid-to-particle pass stored. Threaded over the cells with points;
+   * within a cell the points of one body go to their material as one batch
+   * (Material::update_stresses()). Each point depends only on its own
+   * data, so threads change nothing.
+   */
+  template <int dim>
+  class StressUpdate
+  {
+  public:
+    using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
+
+    /// Where a point's stress stopped being finite (lowest id).
+    struct Failure
+    {
+      bool                  failed = false;
+      types::particle_index id     = numbers::invalid_unsigned_int;
+      Point<dim>            location;
+    };
+
+    StressUpdate(const std::vector<std::unique_ptr<Material>> &materials,
+                 const ParticleLayout<dim> &                   layout)
+      : materials(materials)
+      , layout(layout)
+    {}
+
+    Failure
+    update(Particles::ParticleHandler<dim> &  particle_handler,
+           const CellList &                   cells,
+           const std::vector<Tensor<2, dim>> &velocity_gradients,
+           const double                       time_step) const;
+
+  private:
+    const std::vector<std::unique_ptr<Material>> &materials;
+    const ParticleLayout<dim> &                   layout;
+  };
+} // namespace sable::mpm
+
+#endif

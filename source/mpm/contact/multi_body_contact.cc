@@ -1,0 +1,112 @@
+#include <deal.II/base/parallel.h>
+
+#include <sable/mpm/contact/multi_body_contact.h>
+
+#include <algorithm>
+#include <mutex>
+
+namespace sable::mpm
+{
+  template <int dim>
+  MultiBodyContact<dim>::MultiBodyContact(const ContactParameters &        parameters,
+                                          const std::vector<unsigned int> &body_groups)
+    : parameters(parameters)
+    , with_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
+    , model(parameters, body_groups)
+  {}
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::mark_contact_nodes(
+    const CellColouring<dim> &             colouring,
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const Grid<dim> &                      grid,
+    const ParticleLayout<dim> &            layout)
+  {
+    fields.clear(grid.n_relevant_nodes());
+    // blocks of one colour share no node, so their threads mark different
+    // nodes; the extra (node, body) pairs are collected per range of cells
+    // and sorted by allocate(), so the table does not depend on the threads
+    std::mutex mutex;
+    colouring.for_each_cell_range([&](const auto begin, const auto end) {
+      std::vector<unsigned int>                          bodies;
+      std::vector<std::pair<unsigned int, unsigned int>> extra;
+      for (auto cell = begin; cell != end; ++cell)
+        {
+          const auto particles = particle_handler.particles_in_cell(*cell);
+          if (particles.begin() == particles.end())
+            continue;
+          bodies.clear();
+          for (const auto &particle : particles)
+            {
+              const unsigned int body =
+                static_cast<unsigned int>(particle.get_properties()[layout.body]);
+              if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
+                bodies.push_back(body);
+            }
+          const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(*cell));
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            for (const unsigned int body : bodies)
+              fields.add(nodes[k], body, extra);
+        }
+      if (!extra.empty())
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          fields.add_extra_bodies(extra);
+        }
+    });
+    fields.allocate();
+  }
+
+  template <int dim>
+  template <GridPass pass>
+  void
+  MultiBodyContact<dim>::correct_velocities(const Grid<dim> &              grid,
+                                            const BoundaryConditions<dim> &boundary_conditions,
+                                            const Tensor<1, dim> &         gravity,
+                                            const double                   time_step,
+                                            const unsigned int             n_owned_nodes)
+  {
+    constexpr bool momentum_update = pass == GridPass::momentum_update;
+    // node by node: threads change nothing
+    const std::vector<unsigned int> &contact_nodes = fields.get_contact_nodes();
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(contact_nodes.size()),
+      [&](const unsigned int first, const unsigned int last) {
+        for (unsigned int i = first; i < last; ++i)
+          {
+            const auto [begin, end] = fields.node_records(contact_nodes[i]);
+            for (Record *r = begin; r != end; ++r)
+              {
+                if (r->mass <= 0.)
+                  continue;
+                const Tensor<1, dim> velocity = r->momentum / r->mass;
+                if constexpr (momentum_update)
+                  {
+                    r->old_velocity = velocity;
+                    r->new_velocity = velocity + time_step * (r->force / r->mass + gravity);
+                  }
+                else
+                  r->new_velocity = velocity;
+              }
+          }
+      },
+      256);
+    if (momentum_update ? parameters.on_momentum_update : parameters.on_strain_update)
+      model.apply(fields, grid.node_spacing(), time_step, n_owned_nodes, momentum_update);
+    if (!boundary_conditions.empty())
+      boundary_conditions.apply_to_bodies(fields, !momentum_update);
+  }
+
+  template class MultiBodyContact<2>;
+  template class MultiBodyContact<3>;
+  template void MultiBodyContact<2>::correct_velocities<GridPass::momentum_update>(
+    const Grid<2> &, const BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
+  template void MultiBodyContact<2>::correct_velocities<GridPass::remapped_momenta>(
+    const Grid<2> &, const BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
+  template void MultiBodyContact<3>::correct_velocities<GridPass::momentum_update>(
+    const Grid<3> &, const BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
+  template void MultiBodyContact<3>::correct_velocities<GridPass::remapped_momenta>(
+    const Grid<3> &, const BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
+} // namespace sable::mpm

@@ -1,0 +1,143 @@
+#include <deal.II/base/parallel.h>
+
+#include <sable/mpm/grid_to_particle.h>
+
+#include <cmath>
+#include <mutex>
+
+namespace sable::mpm
+{
+  template <int dim>
+  void
+  GridToParticle<dim>::Report::fail(const bool                  distance,
+                                    const types::particle_index id,
+                                    const Point<dim> &          x)
+  {
+    // keep the lowest id, whatever order the threads report in
+    if ((not_finite || too_far) && id >= failed_id)
+      return;
+    (distance ? too_far : not_finite) = true;
+    failed_id                         = id;
+    failure_location                  = x;
+  }
+
+  template <int dim>
+  void
+  GridToParticle<dim>::Report::merge(const Report &other)
+  {
+    max_signal_speed   = std::max(max_signal_speed, other.max_signal_speed);
+    max_particle_speed = std::max(max_particle_speed, other.max_particle_speed);
+    if (other.not_finite || other.too_far)
+      fail(other.too_far, other.failed_id, other.failure_location);
+  }
+
+  template <int dim>
+  template <bool update_positions, bool update_strain_rates>
+  typename GridToParticle<dim>::Report
+  GridToParticle<dim>::transfer(Particles::ParticleHandler<dim> &particle_handler,
+                                const CellList &                 cells,
+                                const MultiBodyContact<dim> *    contact,
+                                const double                     time_step,
+                                const double                     alpha) const
+  {
+    using Layout = ParticleLayout<dim>;
+    if (update_strain_rates)
+      velocity_gradients.resize(particle_handler.get_max_local_particle_index());
+    const std::vector<double> &new_velocity = fields.get_new_velocity();
+    const std::vector<double> &old_velocity = fields.get_old_velocity();
+
+    Report     report;
+    std::mutex report_mutex;
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(cells.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        Report                    local;
+        typename Grid<dim>::Shape shape;
+        for (unsigned int c = begin; c < end; ++c)
+          {
+            const typename Grid<dim>::CellData &data = grid.cell_data(cells[c]);
+            for (auto &particle : particle_handler.particles_in_cell(cells[c]))
+              {
+                const auto         props = particle.get_properties();
+                const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
+                grid.evaluate(data, particle.get_reference_location(), shape);
+                Tensor<1, dim> velocity_change, grid_velocity;
+                Tensor<2, dim> L;
+                for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                  {
+                    const unsigned int node  = shape.nodes[v];
+                    const double *     v_new = &new_velocity[node * dim];
+                    const double *     v_old = &old_velocity[node * dim];
+                    // each particle reads its own body's field
+                    if (contact != nullptr)
+                      if (const auto *record = contact->velocities(node, body))
+                        {
+                          v_new = &record->new_velocity[0];
+                          v_old = &record->old_velocity[0];
+                        }
+                    const double N = shape.values[v];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        if constexpr (update_positions)
+                          {
+                            velocity_change[d] += N * (v_new[d] - v_old[d]);
+                            grid_velocity[d] += N * v_new[d];
+                          }
+                        if constexpr (update_strain_rates)
+                          for (unsigned int e = 0; e < dim; ++e)
+                            L[d][e] += v_new[d] * shape.gradients[v][e];
+                      }
+                  }
+                if constexpr (update_positions)
+                  {
+                    double speed2 = 0;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        double &v = props[Layout::velocity + d];
+                        v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
+                        speed2 += v * v;
+                      }
+                    // a particle may not cross more than one cell per step
+                    const Tensor<1, dim> displacement = time_step * grid_velocity;
+                    Point<dim>           location     = particle.get_location();
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (std::abs(displacement[d]) * data.inverse_h[d] > 1.)
+                        local.fail(true, particle.get_id(), location);
+                    location += displacement;
+                    particle.set_location(location);
+                    local.max_signal_speed =
+                      std::max(local.max_signal_speed, std::sqrt(speed2) + body_wave_speed[body]);
+                    local.max_particle_speed =
+                      std::max(local.max_particle_speed, std::sqrt(speed2));
+                    if (!std::isfinite(speed2))
+                      local.fail(false, particle.get_id(), location);
+                  }
+                if constexpr (update_strain_rates)
+                  velocity_gradients[particle.get_local_index()] = L;
+              }
+          }
+        std::lock_guard<std::mutex> lock(report_mutex);
+        report.merge(local);
+      },
+      16);
+    return report;
+  }
+
+  template class GridToParticle<2>;
+  template class GridToParticle<3>;
+#define SABLE_INSTANTIATE(dim, positions, strain_rates)                                   \
+  template GridToParticle<dim>::Report                                                    \
+  GridToParticle<dim>::transfer<positions, strain_rates>(Particles::ParticleHandler<dim> &, \
+                                                         const CellList &,                \
+                                                         const MultiBodyContact<dim> *,   \
+                                                         const double,                    \
+                                                         const double) const;
+  SABLE_INSTANTIATE(2, true, false)
+  SABLE_INSTANTIATE(2, false, true)
+  SABLE_INSTANTIATE(2, true, true)
+  SABLE_INSTANTIATE(3, true, false)
+  SABLE_INSTANTIATE(3, false, true)
+  SABLE_INSTANTIATE(3, true, true)
+#undef SABLE_INSTANTIATE
+} // namespace sable::mpm

@@ -1,0 +1,106 @@
+#include <sable/mpm/particle_to_grid.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sable::mpm
+{
+  template <int dim>
+  template <GridPass pass>
+  void
+  ParticleToGrid<dim>::scatter(const Particles::ParticleHandler<dim> &particle_handler,
+                               const Grid<dim> &                      grid,
+                               NodalFields<dim> &                     fields,
+                               MultiBodyContact<dim> *                contact) const
+  {
+    using Layout                           = ParticleLayout<dim>;
+    constexpr bool         momentum_update = pass == GridPass::momentum_update;
+    constexpr unsigned int n_components    = NodalFields<dim>::n_components;
+    fields.template zero<pass>();
+    double *const grid_values = fields.scattered_values();
+    double *const extent      = momentum_update ? fields.material_extent_values() : nullptr;
+
+    // the single-field assembler: one point's share of mass, momentum,
+    // internal force -V sigma . grad N and material extent
+    const auto add_to_single_field = [&](const auto &                     particle,
+                                         const ArrayView<const double> &  props,
+                                         const typename Grid<dim>::Shape &shape,
+                                         const Tensor<2, dim> &           volume_stress) {
+      const double mass = props[Layout::mass];
+      if (extent != nullptr)
+        {
+          const Tensor<2, dim> F = Layout::deformation_gradient(props);
+          // half the edge of the point's current volume
+          const double half =
+            0.5 * std::pow(determinant(F) * props[Layout::initial_volume], 1. / dim);
+          const Point<dim> x = particle.get_location();
+          for (unsigned int v = 0; v < shape.n_nodes; ++v)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                double *const e = extent + shape.nodes[v] * 2 * dim + 2 * d;
+                e[0]            = std::min(e[0], x[d] - half);
+                e[1]            = std::min(e[1], -(x[d] + half));
+              }
+        }
+      for (unsigned int v = 0; v < shape.n_nodes; ++v)
+        {
+          double *const node   = grid_values + shape.nodes[v] * n_components;
+          const double  weight = mass * shape.values[v];
+          node[0] += weight;
+          for (unsigned int d = 0; d < dim; ++d)
+            node[1 + d] += weight * props[Layout::velocity + d];
+          if constexpr (momentum_update)
+            {
+              const Tensor<1, dim> force = -(volume_stress * shape.gradients[v]);
+              for (unsigned int d = 0; d < dim; ++d)
+                node[1 + dim + d] += force[d];
+            }
+        }
+    };
+
+    // the cell worker
+    const auto scatter_cell = [&](const typename Triangulation<dim>::active_cell_iterator &cell,
+                                  typename Grid<dim>::Shape &                             shape) {
+      const auto particles = particle_handler.particles_in_cell(cell);
+      if (particles.begin() == particles.end())
+        return;
+      const typename Grid<dim>::CellData &data = grid.cell_data(cell);
+      const bool near_contact = contact != nullptr && contact->touches(grid.cell_nodes(data));
+      const bool owned        = cell->is_locally_owned();
+      if (!owned && !near_contact)
+        return;
+      for (const auto &particle : particles)
+        {
+          const ArrayView<const double> props = particle.get_properties();
+          grid.evaluate(data, particle.get_reference_location(), shape);
+          const Tensor<2, dim>          volume_stress =
+            momentum_update ? Layout::volume_stress(props) : Tensor<2, dim>();
+          if (near_contact)
+            contact->template scatter<pass>(props, shape, volume_stress);
+          if (owned)
+            add_to_single_field(particle, props, shape, volume_stress);
+        }
+    };
+
+    colouring.for_each_cell_range([&](const auto begin, const auto end) {
+      // the worker's scratch: the shape functions at one point
+      typename Grid<dim>::Shape shape;
+      for (auto cell = begin; cell != end; ++cell)
+        scatter_cell(*cell, shape);
+    });
+    fields.template compress<pass>();
+  }
+
+  template class ParticleToGrid<2>;
+  template class ParticleToGrid<3>;
+#define SABLE_INSTANTIATE(dim, pass)                                                    \
+  template void ParticleToGrid<dim>::scatter<pass>(const Particles::ParticleHandler<dim> &, \
+                                                   const Grid<dim> &,                   \
+                                                   NodalFields<dim> &,                  \
+                                                   MultiBodyContact<dim> *) const;
+  SABLE_INSTANTIATE(2, GridPass::momentum_update)
+  SABLE_INSTANTIATE(2, GridPass::remapped_momenta)
+  SABLE_INSTANTIATE(3, GridPass::momentum_update)
+  SABLE_INSTANTIATE(3, GridPass::remapped_momenta)
+#undef SABLE_INSTANTIATE
+} // namespace sable::mpm

@@ -1,0 +1,98 @@
+#include <deal.II/base/mpi.h>
+
+#include <sable/mpm/owned_cell_strip.h>
+#include <sable/mpm/q1_shape.h>
+#include <sable/mpm/seeding.h>
+
+namespace sable::mpm
+{
+  template <int dim>
+  void
+  seed_bodies(const parallel::distributed::Triangulation<dim> &triangulation,
+              const std::vector<BodyParameters<dim>> &         bodies,
+              const std::vector<std::unique_ptr<Material>> &   materials,
+              const ParticleLayout<dim> &                      layout,
+              const Tensor<1, dim> &                           gravity,
+              Particles::ParticleHandler<dim> &                particle_handler)
+  {
+    const OwnedCellStrip<dim> owned_cells(triangulation);
+    types::particle_index     next_id = 0;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+      const BodyParameters<dim> &body     = bodies[b];
+      const Material &           material = *materials[b];
+      const unsigned int         k        = body.particles_per_direction;
+      const auto                 box      = body.bounding_box();
+      const Point<dim>           top      = body.top_point(gravity);
+      const Point<dim>           centre =
+        body.shape == BodyParameters<dim>::Shape::disk ?
+          body.center :
+          Point<dim>((Tensor<1, dim>(body.lower_corner) + Tensor<1, dim>(body.upper_corner)) / 2.);
+
+      std::vector<double> properties(layout.n_properties(), 0.);
+      unsigned int        n_sub = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        n_sub *= k;
+
+      owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
+          const auto &     cell  = strip_cell.cell;
+          const Point<dim> lower = strip_cell.lower;
+          const Point<dim> upper = strip_cell.upper;
+          const double sub_volume = cell->measure() / n_sub;
+          for (unsigned int i = 0; i < n_sub; ++i)
+            {
+              const Point<dim> reference = seeding_point<dim>(i, k);
+              Point<dim>       x;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
+              if (!body.contains(x))
+                continue;
+              std::fill(properties.begin(), properties.end(), 0.);
+              properties[layout.mass]           = material.density() * sub_volume;
+              properties[layout.initial_volume] = sub_volume;
+              properties[layout.body]           = b;
+              // v = v0 + omega x (x - c)
+              Tensor<1, 3> r, omega_cross_r;
+              for (unsigned int d = 0; d < dim; ++d)
+                r[d] = x[d] - centre[d];
+              omega_cross_r = cross_product_3d(body.angular_velocity, r);
+              for (unsigned int d = 0; d < dim; ++d)
+                properties[layout.velocity + d] = body.velocity[d] + omega_cross_r[d];
+              for (unsigned int d = 0; d < dim; ++d)
+                properties[layout.deformation + d * dim + d] = 1.;
+              if (body.lithostatic_stress)
+                {
+                  // p = rho g . (x - x_top) >= 0, sigma = -p I
+                  const double pressure =
+                    material.density() * (gravity * (x - top));
+                  for (unsigned int d = 0; d < 3; ++d)
+                    properties[layout.stress + d] = -pressure;
+                }
+              particle_handler.insert_particle(x, reference, next_id++, cell,
+                                                make_array_view(properties));
+            }
+        });
+      }
+    // ids unique over all ranks: offset by the points of the lower ranks
+    const MPI_Comm              communicator = triangulation.get_communicator();
+    types::particle_index       offset       = 0;
+    const types::particle_index local = particle_handler.n_locally_owned_particles();
+    MPI_Exscan(&local, &offset, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, communicator);
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      offset = 0;
+    for (auto &particle : particle_handler)
+      particle.set_id(particle.get_id() + offset);
+    particle_handler.update_cached_numbers();
+  }
+
+#define SABLE_INSTANTIATE(dim)                                                              \
+  template void seed_bodies<dim>(const parallel::distributed::Triangulation<dim> &,         \
+                                 const std::vector<BodyParameters<dim>> &,                  \
+                                 const std::vector<std::unique_ptr<Material>> &,            \
+                                 const ParticleLayout<dim> &,                               \
+                                 const Tensor<1, dim> &,                                    \
+                                 Particles::ParticleHandler<dim> &);
+  SABLE_INSTANTIATE(2)
+  SABLE_INSTANTIATE(3)
+#undef SABLE_INSTANTIATE
+} // namespace sable::mpm
