@@ -46,8 +46,9 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 3: the grid's base level and the grid output series (checkpoints
-      /// of format 1 and 2 have a coarse mesh of every subdivision cell)
+      /// 4: the run state as one RunState, the contact nodes as an output
+      /// series (3: the grid's base level and the grid output series;
+      /// 1 and 2 have a coarse mesh of every subdivision cell)
       unsigned int          format         = 4;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
@@ -65,6 +66,7 @@ namespace sable::mpm
       std::vector<Tensor<1, dim>>                 pair_forces;
       std::vector<std::pair<double, std::string>> particle_files;
       std::vector<std::pair<double, std::string>> contact_node_files;
+      std::vector<XDMFEntry>                      contact_node_xdmf_entries;
       std::vector<XDMFEntry>                      xdmf_entries;
       std::vector<std::pair<double, std::string>> grid_files;
       std::vector<XDMFEntry>                      grid_xdmf_entries;
@@ -76,7 +78,7 @@ namespace sable::mpm
         ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
         ar &n_particles &run;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction &pair_forces;
-        ar &particle_files &contact_node_files &xdmf_entries;
+        ar &particle_files &contact_node_files &contact_node_xdmf_entries &xdmf_entries;
         ar &grid_files &grid_xdmf_entries;
       }
     };
@@ -158,7 +160,8 @@ namespace sable::mpm
     state.n_particles             = particle_handler->n_global_particles();
     state.run                     = this->state;
     state.particle_files          = particle_series.files;
-    state.contact_node_files      = contact_node_files;
+    state.contact_node_files        = contact_node_series.files;
+    state.contact_node_xdmf_entries = contact_node_series.xdmf_entries;
     state.xdmf_entries            = particle_series.xdmf_entries;
     if (grid_output)
       {
@@ -284,7 +287,8 @@ namespace sable::mpm
     const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
     this->state                  = state.run;
     particle_series.files        = state.particle_files;
-    contact_node_files           = state.contact_node_files;
+    contact_node_series.files        = state.contact_node_files;
+    contact_node_series.xdmf_entries = state.contact_node_xdmf_entries;
     particle_series.xdmf_entries = state.xdmf_entries;
     if (grid_output)
       {

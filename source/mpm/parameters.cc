@@ -2,6 +2,8 @@
 
 #include <sable/base/common_parameters.h>
 #include <sable/base/input_error.h>
+#include <sable/base/named_choice.h>
+#include <sable/mpm/parameter_tools.h>
 #include <sable/mpm/parameters.h>
 
 #include <cmath>
@@ -13,223 +15,17 @@ namespace sable::mpm
 {
   namespace
   {
-    std::string
-    zeros(const unsigned int n)
-    {
-      std::string s = "0";
-      for (unsigned int i = 1; i < n; ++i)
-        s += ", 0";
-      return s;
-    }
-
-    template <int dim>
-    Tensor<1, dim>
-    read_vector(const ParameterHandler &prm,
-                const std::string &     entry,
-                const std::string &     path)
-    {
-      const std::vector<double> values =
-        Utilities::string_to_double(Utilities::split_string_list(prm.get(entry)));
-      check_input(values.size() == dim,
-                  path + entry,
-                  prm.get(entry),
-                  std::to_string(dim) + " comma-separated numbers");
-      Tensor<1, dim> result;
-      for (unsigned int d = 0; d < dim; ++d)
-        result[d] = values[d];
-      return result;
-    }
-
-    /// "1: a, 2: b" -> {{"1", "a"}, {"2", "b"}}
-    std::vector<std::pair<std::string, std::string>>
-    split_map(const std::string &text)
-    {
-      std::vector<std::pair<std::string, std::string>> result;
-      for (const std::string &item : Utilities::split_string_list(text, ','))
-        {
-          const auto pair = Utilities::split_string_list(item, ':');
-          if (pair.size() == 2)
-            result.emplace_back(pair[0], pair[1]);
-        }
-      return result;
-    }
-
-    /// The number in @p text, or NaN if it is not one.
-    double
-    to_double(const std::string &text)
-    {
-      try
-        {
-          std::size_t end   = 0;
-          const double value = std::stod(text, &end);
-          if (end == text.size())
-            return value;
-        }
-      catch (...)
-        {}
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-
-    /// A friction coefficient: a number >= 0, or 'stick' (infinity).
-    double
-    parse_friction(const std::string &text, const std::string &entry)
-    {
-      if (text == "stick" || text == "inf")
-        return std::numeric_limits<double>::infinity();
-      const double value = to_double(text);
-      check_input(value >= 0, entry, text, "a coefficient >= 0 or 'stick'");
-      return value;
-    }
-
-    const char *material_models = "linear elastic|neo-Hookean|von Mises";
-
-    void
-    declare_material(ParameterHandler &prm)
-    {
-      prm.declare_entry("Material",
-                        "linear elastic",
-                        Patterns::Selection(material_models),
-                        "Constitutive model: linear elastic (hypoelastic, "
-                        "Jaumann rate), neo-Hookean (compressible) or von "
-                        "Mises (J2 plasticity, linear isotropic hardening).");
-      prm.declare_entry("Density", "1000", Patterns::Double(), "kg/m^3, > 0.");
-      prm.declare_entry("Young's modulus",
-                        "0",
-                        Patterns::Double(),
-                        "Pa. Give either Young's modulus and Poisson's ratio "
-                        "or Bulk modulus and Shear modulus.");
-      prm.declare_entry("Poisson's ratio",
-                        "0.3",
-                        Patterns::Double(),
-                        "In (-1, 0.5); used with Young's modulus.");
-      prm.declare_entry("Bulk modulus", "0", Patterns::Double(), "Pa.");
-      prm.declare_entry("Shear modulus", "0", Patterns::Double(), "Pa.");
-      prm.declare_entry("Yield stress",
-                        "0",
-                        Patterns::Double(),
-                        "Initial von Mises yield stress, Pa (von Mises only).");
-      prm.declare_entry("Hardening modulus",
-                        "0",
-                        Patterns::Double(),
-                        "Linear isotropic hardening modulus H, Pa: "
-                        "sigma_y = sigma_y0 + H * equivalent plastic strain.");
-    }
-
-    MaterialParameters
-    parse_material(const ParameterHandler &prm, const std::string &path)
-    {
-      MaterialParameters m;
-      m.model   = prm.get("Material");
-      m.density = prm.get_double("Density");
-      check_input(m.density > 0,
-                  path + "Density",
-                  m.density,
-                  "a number > 0 (kg/m^3)");
-      const double young   = prm.get_double("Young's modulus");
-      const double poisson = prm.get_double("Poisson's ratio");
-      const double bulk    = prm.get_double("Bulk modulus");
-      const double shear   = prm.get_double("Shear modulus");
-      if (bulk != 0. || shear != 0.)
-        {
-          check_input(young == 0.,
-                      path + "Young's modulus",
-                      young,
-                      "0 (unset) when Bulk and Shear modulus are given");
-          check_input(bulk > 0,
-                      path + "Bulk modulus",
-                      bulk,
-                      "a number > 0 (Pa)");
-          check_input(shear > 0,
-                      path + "Shear modulus",
-                      shear,
-                      "a number > 0 (Pa)");
-          m.bulk_modulus  = bulk;
-          m.shear_modulus = shear;
-        }
-      else
-        {
-          check_input(young > 0,
-                      path + "Young's modulus",
-                      young,
-                      "a number > 0 (Pa), or give Bulk and Shear modulus");
-          check_input(poisson > -1. && poisson < 0.5,
-                      path + "Poisson's ratio",
-                      poisson,
-                      "the open interval (-1, 0.5)");
-          m.set_young_poisson(young, poisson);
-        }
-      m.yield_stress      = prm.get_double("Yield stress");
-      m.hardening_modulus = prm.get_double("Hardening modulus");
-      if (m.model == "von Mises")
-        {
-          check_input(m.yield_stress > 0,
-                      path + "Yield stress",
-                      m.yield_stress,
-                      "a number > 0 (Pa) for the von Mises material");
-          check_input(m.hardening_modulus >= 0,
-                      path + "Hardening modulus",
-                      m.hardening_modulus,
-                      "a number >= 0 (Pa)");
-        }
-      return m;
-    }
+    const NamedChoice<UpdateScheme> update_schemes{{"USL", UpdateScheme::usl},
+                                                   {"MUSL", UpdateScheme::musl}};
+    const NamedChoice<OutputFormat> output_formats{{"vtu", OutputFormat::vtu},
+                                                   {"hdf5", OutputFormat::hdf5}};
   } // namespace
-
-  void
-  MaterialParameters::set_young_poisson(const double young,
-                                        const double poisson)
-  {
-    bulk_modulus  = young / (3. * (1. - 2. * poisson));
-    shear_modulus = young / (2. * (1. + poisson));
-  }
-
-  template <int dim>
-  std::pair<Point<dim>, Point<dim>>
-  BodyParameters<dim>::bounding_box() const
-  {
-    if (shape == Shape::box)
-      return {lower_corner, upper_corner};
-    Point<dim> lo = center, hi = center;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        lo[d] -= radius;
-        hi[d] += radius;
-      }
-    return {lo, hi};
-  }
-
-  template <int dim>
-  bool
-  BodyParameters<dim>::contains(const Point<dim> &x) const
-  {
-    if (shape == Shape::disk)
-      return (x - center).norm_square() <= radius * radius;
-    for (unsigned int d = 0; d < dim; ++d)
-      if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
-        return false;
-    return true;
-  }
-
-  template <int dim>
-  Point<dim>
-  BodyParameters<dim>::top_point(const Tensor<1, dim> &gravity) const
-  {
-    if (shape == Shape::disk)
-      {
-        const double g = gravity.norm();
-        return g > 0 ? center - radius * gravity / g : center;
-      }
-    Point<dim> top;
-    for (unsigned int d = 0; d < dim; ++d)
-      top[d] = gravity[d] > 0 ? lower_corner[d] : upper_corner[d];
-    return top;
-  }
 
   template <int dim>
   void
   declare_parameters(ParameterHandler &prm, const unsigned int n_bodies)
   {
-    const std::string zero = zeros(dim);
+    const std::string zero = zero_vector(dim);
     prm.declare_entry("Output directory",
                       "",
                       Patterns::Anything(),
@@ -262,7 +58,7 @@ namespace sable::mpm
     prm.enter_subsection("Solver");
     prm.declare_entry("Update scheme",
                       "MUSL",
-                      Patterns::Selection("USL|MUSL"),
+                      update_schemes.pattern(),
                       "USL updates stresses with the grid velocities of the "
                       "momentum update; MUSL first maps the updated particle "
                       "momenta back to the grid. USL is unstable at nodes "
@@ -305,134 +101,15 @@ namespace sable::mpm
     prm.leave_subsection();
 
     prm.enter_subsection("Boundary conditions");
-    prm.declare_entry("Types",
-                      "",
-                      Patterns::Map(Patterns::Integer(0, 255),
-                                    Patterns::Selection(
-                                      "free|fixed|slip|friction|moving")),
-                      "Condition per boundary id, e.g. '0: slip, 2: "
-                      "friction'. Ids not listed are free.");
-    prm.declare_entry("Friction coefficients",
-                      "",
-                      Patterns::Map(Patterns::Integer(0, 255),
-                                    Patterns::Double()),
-                      "Coulomb coefficient per friction boundary, e.g. "
-                      "'2: 0.3'.");
-    prm.declare_entry("Friction wall contact",
-                      "material",
-                      Patterns::Selection("approach|material"),
-                      "When a friction wall acts at a wall node. approach: "
-                      "whenever the node's velocity approaches the wall "
-                      "(SPEC step 6 with the wall as the other body). "
-                      "material: only if, in addition, the material points "
-                      "around the node reach the wall within the step "
-                      "(the nearest point's edge, x_p -+ l_p/2 with l_p^dim "
-                      "its current volume, at most dt times the node's "
-                      "approach speed from the wall). A node up to a cell "
-                      "away from the body's surface, whose velocity the "
-                      "surface points' stress dominates, then carries no "
-                      "contact force.");
-    prm.declare_entry("Wall velocities",
-                      "",
-                      Patterns::Map(Patterns::Integer(0, 255),
-                                    Patterns::List(Patterns::Double(),
-                                                   dim,
-                                                   dim,
-                                                   ";")),
-                      "Velocity per moving boundary, components separated "
-                      "by ';', e.g. '3: 0.1; 0'.");
+    BoundaryParameters<dim>::declare_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Contact");
-    prm.declare_entry("Model",
-                      "none",
-                      Patterns::Selection("none|bardenhagen 2000|bardenhagen 2001"),
-                      "Contact between bodies. none: all bodies share one "
-                      "velocity field (no slip, no separation, no cost). "
-                      "bardenhagen 2000: a velocity field per body, Coulomb "
-                      "friction while bodies approach. bardenhagen 2001: also "
-                      "while the normal traction is compressive.");
-    prm.declare_entry("Normals",
-                      "mass weighted",
-                      Patterns::Selection("mass weighted|average"),
-                      "How the bodies' normals at a node are made collinear "
-                      "(so contact conserves momentum): 'average' is the "
-                      "papers' n = (n1 - n2)/|n1 - n2| of the unit mass-"
-                      "gradient directions; 'mass weighted' weights each "
-                      "direction by the body's nodal mass, so that a large "
-                      "flat body's normal is not tilted by a small body's "
-                      "corner (see doc/mpm.md).");
-    prm.declare_entry("Friction coefficient",
-                      "0",
-                      Patterns::Anything(),
-                      "Coulomb coefficient >= 0 between any two groups not "
-                      "listed in 'Group friction'; 'stick' for no slip.");
-    prm.declare_entry("Group friction",
-                      "",
-                      Patterns::Anything(),
-                      "Coefficients per pair of body groups, e.g. "
-                      "'0-1: 0.5, 1-1: stick'.");
-    prm.declare_entry("Impulse scaling",
-                      "0.5",
-                      Patterns::Anything(),
-                      "gamma in [0.5, 1] of the contact-impulse scaling "
-                      "(paper 002, with the erratum min(...,1)), or 'off'.");
-    prm.declare_entry("Passes",
-                      "momentum update, strain update",
-                      Patterns::MultipleSelection("momentum update|strain update"),
-                      "Where contact acts: on the velocities after the "
-                      "momentum update, and on the velocities the strain "
-                      "update uses (MUSL's remapped velocities).");
-    prm.declare_entry("Reported pairs",
-                      "all",
-                      Patterns::Anything(),
-                      "Body pairs whose total contact force goes to "
-                      "statistics.csv, e.g. '0-1, 1-2'; 'all' (every pair "
-                      "when there are at most 4 bodies) or 'none'.");
+    ContactParameters::declare_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh refinement");
-    prm.declare_entry("Criteria",
-                      "",
-                      Patterns::MultipleSelection("body surface|contact|particle count|region"),
-                      "Where the grid is refined between steps (empty: a fixed "
-                      "grid). 'body surface': cells on either side of a body's "
-                      "surface and between bodies; 'contact': cells where "
-                      "bodies meet each other or a friction wall (a body "
-                      "held by a fixed or slip wall is not refined there); 'particle count': cells holding more than "
-                      "'Maximum particles per cell' material points; 'region': "
-                      "cells inside the box 'Region lower/upper corner'. "
-                      "Cells no criterion asks for are coarsened again, down "
-                      "to the minimum level.");
-    prm.declare_entry("Maximum level",
-                      "1",
-                      Patterns::Integer(0, 12),
-                      "Finest refinement level, counted from the starting grid "
-                      "(Grid/Subdivisions), in 0..12. Body geometry criteria "
-                      "refine to it before the bodies are seeded.");
-    prm.declare_entry("Minimum level",
-                      "0",
-                      Patterns::Integer(0, 12),
-                      "Coarsest level anywhere: the starting grid is refined "
-                      "globally to it; at most the maximum level.");
-    prm.declare_entry("Refinement interval",
-                      "0",
-                      Patterns::Integer(0),
-                      "Steps between mesh adaptations; 0: adapt whenever the "
-                      "fastest material point may have moved half of the "
-                      "smallest cell since the last adaptation. A body stays in "
-                      "its refined band only if it crosses less than about one "
-                      "fine cell between adaptations.");
-    prm.declare_entry("Maximum particles per cell",
-                      "16",
-                      Patterns::Integer(1),
-                      "'particle count' criterion: cells with more points are "
-                      "refined; cells are coarsened when their parent would "
-                      "hold at most this many.");
-    prm.declare_entry("Region lower corner", zero, Patterns::List(Patterns::Double(), dim, dim),
-                      "'region' criterion: lower corner of the refined box, m.");
-    prm.declare_entry("Region upper corner", zero, Patterns::List(Patterns::Double(), dim, dim),
-                      "'region' criterion: upper corner of the refined box, m.");
+    MeshRefinementParameters<dim>::declare_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -443,7 +120,7 @@ namespace sable::mpm
                       "(0: no particle output).");
     prm.declare_entry("Output format",
                       "vtu",
-                      Patterns::Selection("vtu|hdf5"),
+                      output_formats.pattern(),
                       "Format of the particle files (and of the grid "
                       "files, see 'Grid output'). vtu: one "
                       "particles_NNNNN.pvtu (with a .vtu per rank) per output "
@@ -506,83 +183,9 @@ namespace sable::mpm
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
         prm.enter_subsection("Body " + std::to_string(b));
-        prm.declare_entry("Shape",
-                          "disk",
-                          Patterns::Selection("disk|sphere|box"),
-                          "disk (2D) or sphere (3D), or box.");
-        prm.declare_entry("Center", zero, Patterns::List(Patterns::Double(), dim, dim), "Disk/sphere centre, m.");
-        prm.declare_entry("Radius", "0", Patterns::Double(), "Disk/sphere radius, m, > 0.");
-        prm.declare_entry("Lower corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box lower corner, m.");
-        prm.declare_entry("Upper corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box upper corner, m.");
-        prm.declare_entry("Particles per cell direction",
-                          "2",
-                          Patterns::Integer(),
-                          "k in 1..4: k^dim material points per cell, at the "
-                          "centres of equal sub-cells.");
-        declare_material(prm);
-        prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
-        prm.declare_entry("Angular velocity",
-                          dim == 2 ? "0" : "0, 0, 0",
-                          Patterns::List(Patterns::Double(),
-                                         dim == 2 ? 1 : 3,
-                                         dim == 2 ? 1 : 3),
-                          "Initial rigid rotation about the centre, rad/s "
-                          "(2D: one number, counter-clockwise).");
-        prm.declare_entry("Refine surface",
-                          "true",
-                          Patterns::Bool(),
-                          "Whether the 'body surface' refinement criterion "
-                          "refines around this body's surface (false, e.g., for "
-                          "a large plane a grain rolls on: only where the "
-                          "grain touches it, with the 'contact' criterion).");
-        prm.declare_entry("Group",
-                          "0",
-                          Patterns::Integer(0),
-                          "Contact group; friction is set per pair of groups "
-                          "(Contact/Group friction).");
-        prm.declare_entry("Lithostatic initial stress",
-                          "false",
-                          Patterns::Bool(),
-                          "Start from sigma = -p I with grad p = rho g and "
-                          "p = 0 at the body's top (linear elastic and von "
-                          "Mises bodies).");
+        BodyParameters<dim>::declare_parameters(prm);
         prm.leave_subsection();
       }
-  }
-
-  template <int dim>
-  void
-  check_body(const BodyParameters<dim> &body, const std::string &name)
-  {
-    const std::string path = name + "/";
-    if (body.shape == BodyParameters<dim>::Shape::disk)
-      check_input(body.radius > 0, path + "Radius", body.radius, "a number > 0 (m)");
-    else
-      for (unsigned int d = 0; d < dim; ++d)
-        check_input(body.upper_corner[d] > body.lower_corner[d],
-                    path + "Upper corner",
-                    body.upper_corner,
-                    "each component larger than the Lower corner's");
-    check_input(body.particles_per_direction >= 1 &&
-                  body.particles_per_direction <= 4,
-                path + "Particles per cell direction",
-                body.particles_per_direction,
-                "an integer in 1..4");
-    const MaterialParameters &m = body.material;
-    check_input(m.model == "linear elastic" || m.model == "neo-Hookean" ||
-                  m.model == "von Mises",
-                path + "Material",
-                m.model,
-                material_models);
-    check_input(m.density > 0, path + "Density", m.density, "a number > 0 (kg/m^3)");
-    check_input(m.bulk_modulus > 0, path + "Bulk modulus", m.bulk_modulus, "a number > 0 (Pa)");
-    check_input(m.shear_modulus > 0, path + "Shear modulus", m.shear_modulus, "a number > 0 (Pa)");
-    if (m.model == "von Mises")
-      check_input(m.yield_stress > 0, path + "Yield stress", m.yield_stress, "a number > 0 (Pa)");
-    check_input(!body.lithostatic_stress || m.model != "neo-Hookean",
-                path + "Lithostatic initial stress",
-                "true",
-                "false for neo-Hookean bodies (their stress follows from F)");
   }
 
   template <int dim>
@@ -603,44 +206,10 @@ namespace sable::mpm
                 "Output/Output format", "hdf5",
                 "vtu (the deal.II library in use was built without HDF5)");
 #endif
-    for (const auto &[id, boundary] : p.boundaries)
-      {
-        if (boundary.type == BoundaryType::friction)
-          check_input(boundary.friction >= 0,
-                      "Boundary conditions/Friction coefficients",
-                      std::to_string(id) + ": " + std::to_string(boundary.friction),
-                      "a coefficient >= 0 for each friction boundary, "
-                      "e.g. '" + std::to_string(id) + ": 0.3'");
-      }
+    BoundaryParameters<dim>::check(p.boundaries);
     for (unsigned int b = 0; b < p.bodies.size(); ++b)
-      check_body(p.bodies[b], "Body " + std::to_string(b));
-
-    const MeshRefinementParameters<dim> &r = p.refinement;
-    check_input(r.minimum_level <= r.maximum_level,
-                "Mesh refinement/Minimum level",
-                r.minimum_level,
-                "a level <= 'Maximum level' = " + std::to_string(r.maximum_level));
-    if (r.enabled())
-      check_input(r.maximum_level > r.minimum_level,
-                  "Mesh refinement/Maximum level",
-                  r.maximum_level,
-                  "a level above 'Minimum level' = " + std::to_string(r.minimum_level) +
-                    " when refinement criteria are set");
-    if (r.uses(MeshRefinementParameters<dim>::Criterion::particle_count))
-      check_input(r.maximum_particles_per_cell >= 1,
-                  "Mesh refinement/Maximum particles per cell",
-                  r.maximum_particles_per_cell,
-                  "an integer >= 1");
-    if (r.uses(MeshRefinementParameters<dim>::Criterion::region))
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          std::ostringstream value;
-          value << r.region_upper_corner;
-          check_input(r.region_upper_corner[d] > r.region_lower_corner[d],
-                      "Mesh refinement/Region upper corner",
-                      value.str(),
-                      "each component larger than the Region lower corner's");
-        }
+      p.bodies[b].check("Body " + std::to_string(b) + "/");
+    p.refinement.check();
   }
 
   template <int dim>
@@ -675,7 +244,7 @@ namespace sable::mpm
     prm.leave_subsection();
 
     prm.enter_subsection("Solver");
-    p.update_scheme = prm.get("Update scheme") == "MUSL" ? UpdateScheme::musl : UpdateScheme::usl;
+    p.update_scheme = update_schemes.value(prm.get("Update scheme"));
     p.pic_fraction  = prm.get_double("PIC fraction");
     p.balance_particles = prm.get_bool("Balance particles across ranks");
     prm.leave_subsection();
@@ -698,126 +267,20 @@ namespace sable::mpm
     prm.leave_subsection();
 
     prm.enter_subsection("Boundary conditions");
-    for (const auto &[id, type] : split_map(prm.get("Types")))
-      {
-        BoundaryParameters<dim> &boundary = p.boundaries[std::stoi(id)];
-        boundary.type = type == "fixed"    ? BoundaryType::fixed :
-                        type == "slip"     ? BoundaryType::slip :
-                        type == "friction" ? BoundaryType::friction :
-                        type == "moving"   ? BoundaryType::moving :
-                                             BoundaryType::free;
-        // a friction boundary without a coefficient is reported by
-        // check_parameters()
-        boundary.friction = boundary.type == BoundaryType::friction ? -1. : 0.;
-      }
-    for (const auto &[id, value] : split_map(prm.get("Friction coefficients")))
-      {
-        const auto it = p.boundaries.find(std::stoi(id));
-        check_input(it != p.boundaries.end() &&
-                      it->second.type == BoundaryType::friction,
-                    "Boundary conditions/Friction coefficients",
-                    id + ": " + value,
-                    "coefficients only for boundary ids whose type is friction");
-        it->second.friction = Utilities::string_to_double(value);
-      }
-    for (auto &[id, boundary] : p.boundaries)
-      boundary.material_contact = boundary.type == BoundaryType::friction &&
-                                  prm.get("Friction wall contact") == "material";
-    for (const auto &[id, value] : split_map(prm.get("Wall velocities")))
-      {
-        const auto it = p.boundaries.find(std::stoi(id));
-        check_input(it != p.boundaries.end() &&
-                      it->second.type == BoundaryType::moving,
-                    "Boundary conditions/Wall velocities",
-                    id + ": " + value,
-                    "velocities only for boundary ids whose type is moving");
-        const std::vector<double> v = Utilities::string_to_double(
-          Utilities::split_string_list(value, ';'));
-        for (unsigned int d = 0; d < dim; ++d)
-          it->second.velocity[d] = v[d];
-      }
+    p.boundaries = BoundaryParameters<dim>::parse_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Contact");
-    {
-      ContactParameters &c = p.contact;
-      const std::string  model = prm.get("Model");
-      c.model = model == "bardenhagen 2000" ? ContactParameters::Model::bardenhagen_2000 :
-                model == "bardenhagen 2001" ? ContactParameters::Model::bardenhagen_2001 :
-                                              ContactParameters::Model::none;
-      c.mass_weighted_normals = prm.get("Normals") == "mass weighted";
-      c.friction = parse_friction(prm.get("Friction coefficient"), "Contact/Friction coefficient");
-      for (const auto &[pair, value] : split_map(prm.get("Group friction")))
-        {
-          const auto groups = Utilities::split_string_list(pair, '-');
-          check_input(groups.size() == 2,
-                      "Contact/Group friction", pair + ": " + value,
-                      "entries '<group>-<group>: <coefficient or stick>'");
-          const unsigned int a = Utilities::string_to_int(groups[0]);
-          const unsigned int b = Utilities::string_to_int(groups[1]);
-          c.group_friction[{std::min(a, b), std::max(a, b)}] =
-            parse_friction(value, "Contact/Group friction");
-        }
-      const std::string scaling = prm.get("Impulse scaling");
-      if (scaling == "off")
-        c.impulse_scaling = 0.;
-      else
-        {
-          c.impulse_scaling = to_double(scaling);
-          check_input(c.impulse_scaling >= 0.5 && c.impulse_scaling <= 1.,
-                      "Contact/Impulse scaling", scaling, "a number in [0.5, 1] or 'off'");
-        }
-      const std::string passes = prm.get("Passes");
-      c.on_momentum_update = passes.find("momentum update") != std::string::npos;
-      c.on_strain_update   = passes.find("strain update") != std::string::npos;
-      const std::string pairs = prm.get("Reported pairs");
-      if (pairs == "all")
-        {
-          if (n_bodies <= 4)
-            for (unsigned int a = 0; a < n_bodies; ++a)
-              for (unsigned int b = a + 1; b < n_bodies; ++b)
-                c.reported_pairs.emplace_back(a, b);
-        }
-      else if (pairs != "none")
-        for (const std::string &pair : Utilities::split_string_list(pairs, ','))
-          {
-            const auto bodies = Utilities::split_string_list(pair, '-');
-            check_input(bodies.size() == 2 &&
-                          Utilities::string_to_int(bodies[0]) < int(n_bodies) &&
-                          Utilities::string_to_int(bodies[1]) < int(n_bodies) &&
-                          bodies[0] != bodies[1],
-                        "Contact/Reported pairs", pair,
-                        "pairs '<body>-<body>' of two different bodies below Number of bodies");
-            const unsigned int a = Utilities::string_to_int(bodies[0]);
-            const unsigned int b = Utilities::string_to_int(bodies[1]);
-            c.reported_pairs.emplace_back(std::min(a, b), std::max(a, b));
-          }
-    }
+    p.contact.parse_parameters(prm, n_bodies);
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh refinement");
-    {
-      using Criterion = typename MeshRefinementParameters<dim>::Criterion;
-      MeshRefinementParameters<dim> &r = p.refinement;
-      for (const std::string &name : Utilities::split_string_list(prm.get("Criteria")))
-        r.criteria.push_back(name == "body surface" ? Criterion::body_surface :
-                             name == "contact"      ? Criterion::contact :
-                             name == "particle count" ? Criterion::particle_count :
-                                                        Criterion::region);
-      r.maximum_level = prm.get_integer("Maximum level");
-      r.minimum_level = prm.get_integer("Minimum level");
-      r.interval      = prm.get_integer("Refinement interval");
-      r.maximum_particles_per_cell = prm.get_integer("Maximum particles per cell");
-      r.region_lower_corner =
-        Point<dim>(read_vector<dim>(prm, "Region lower corner", "Mesh refinement/"));
-      r.region_upper_corner =
-        Point<dim>(read_vector<dim>(prm, "Region upper corner", "Mesh refinement/"));
-    }
+    p.refinement.parse_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
     p.output_interval     = prm.get_double("Particle output interval");
-    p.output_format       = prm.get("Output format") == "hdf5" ? OutputFormat::hdf5 : OutputFormat::vtu;
+    p.output_format       = output_formats.value(prm.get("Output format"));
     p.checkpoint_interval = prm.get_integer("Checkpoint interval");
     p.contact_node_output = prm.get_bool("Contact node output");
     p.grid_output         = prm.get_bool("Grid output");
@@ -827,49 +290,30 @@ namespace sable::mpm
     p.allow_outflow       = prm.get_bool("Allow outflow");
     prm.leave_subsection();
 
+    std::vector<std::string> locations; // the entry placing each body
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        const std::string name = "Body " + std::to_string(b);
-        const std::string path = name + "/";
-        prm.enter_subsection(name);
+        prm.enter_subsection("Body " + std::to_string(b));
         BodyParameters<dim> body;
-        body.shape  = prm.get("Shape") == "box" ? BodyParameters<dim>::Shape::box :
-                                                  BodyParameters<dim>::Shape::disk;
-        body.center = Point<dim>(read_vector<dim>(prm, "Center", path));
-        body.radius = prm.get_double("Radius");
-        body.lower_corner = Point<dim>(read_vector<dim>(prm, "Lower corner", path));
-        body.upper_corner = Point<dim>(read_vector<dim>(prm, "Upper corner", path));
-        const int k = prm.get_integer("Particles per cell direction");
-        check_input(k >= 1 && k <= 4, path + "Particles per cell direction", k, "an integer in 1..4");
-        body.particles_per_direction = k;
-        body.material = parse_material(prm, path);
-        body.velocity = read_vector<dim>(prm, "Velocity", path);
-        const std::vector<double> omega = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Angular velocity")));
-        if (dim == 2)
-          body.angular_velocity[2] = omega[0];
-        else
-          for (unsigned int d = 0; d < 3; ++d)
-            body.angular_velocity[d] = omega[d];
-        body.lithostatic_stress = prm.get_bool("Lithostatic initial stress");
-        body.group              = prm.get_integer("Group");
-        body.refine_surface     = prm.get_bool("Refine surface");
-        const bool        is_box   = body.shape == BodyParameters<dim>::Shape::box;
-        const std::string location_entry = is_box ? "Lower corner" : "Center";
-        const std::string location = prm.get(location_entry);
+        body.parse_parameters(prm, "Body " + std::to_string(b) + "/");
+        locations.push_back(body.shape == BodyParameters<dim>::Shape::box ? "Lower corner" :
+                                                                            "Center");
+        locations.back() += " = " + prm.get(locations.back());
         prm.leave_subsection();
-
-        check_body(body, name);
-        const auto box = body.bounding_box();
-        for (unsigned int d = 0; d < dim; ++d)
-          check_input(box.first[d] >= grid.lower_corner[d] &&
-                        box.second[d] <= grid.upper_corner[d],
-                      path + location_entry,
-                      location,
-                      "a body lying inside the grid " + grid_box);
         p.bodies.push_back(body);
       }
     check_parameters(p);
+
+    // every body inside the grid (the grid is the scene's, not a parameter
+    // of the Simulator, which checks its own triangulation)
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const auto box = p.bodies[b].bounding_box();
+        for (unsigned int d = 0; d < dim; ++d)
+          if (box.first[d] < grid.lower_corner[d] || box.second[d] > grid.upper_corner[d])
+            throw InputError("invalid input: 'Body " + std::to_string(b) + "/" + locations[b] +
+                             "'; allowed: a body lying inside the grid " + grid_box);
+      }
     return scene;
   }
 } // namespace sable::mpm
@@ -878,10 +322,7 @@ namespace sable::mpm
 namespace sable::mpm
 {
 #define SABLE_INSTANTIATE(dim)                                                  \
-  template struct BodyParameters<dim>;                                         \
   template void declare_parameters<dim>(ParameterHandler &, unsigned int);     \
-  template void check_body<dim>(const BodyParameters<dim> &,                   \
-                                const std::string &);                          \
   template void check_parameters<dim>(const SimulatorParameters<dim> &);       \
   template Scene<dim> read_scene<dim>(const std::string &);
   SABLE_INSTANTIATE(2)

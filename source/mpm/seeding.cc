@@ -19,59 +19,59 @@ namespace sable::mpm
     types::particle_index     next_id = 0;
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
-      const BodyParameters<dim> &body     = bodies[b];
-      const Material &           material = *materials[b];
-      const unsigned int         k        = body.particles_per_direction;
-      const auto                 box      = body.bounding_box();
-      const Point<dim>           top      = body.top_point(gravity);
-      const Point<dim>           centre =
-        body.shape == BodyParameters<dim>::Shape::disk ?
-          body.center :
-          Point<dim>((Tensor<1, dim>(body.lower_corner) + Tensor<1, dim>(body.upper_corner)) / 2.);
+        const BodyParameters<dim> &body     = bodies[b];
+        const Material &           material = *materials[b];
+        const unsigned int         k        = body.particles_per_direction;
+        const auto                 box      = body.bounding_box();
+        const Point<dim>           top      = body.top_point(gravity);
+        const Point<dim>           centre =
+          body.shape == BodyParameters<dim>::Shape::disk ?
+            body.center :
+            Point<dim>((Tensor<1, dim>(body.lower_corner) + Tensor<1, dim>(body.upper_corner)) / 2.);
 
-      std::vector<double> properties(layout.n_properties(), 0.);
-      unsigned int        n_sub = 1;
-      for (unsigned int d = 0; d < dim; ++d)
-        n_sub *= k;
+        std::vector<double> properties(layout.n_properties(), 0.);
+        unsigned int        n_sub = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          n_sub *= k;
 
-      owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
-          const auto &     cell  = strip_cell.cell;
-          const Point<dim> lower = strip_cell.lower;
-          const Point<dim> upper = strip_cell.upper;
-          const double sub_volume = cell->measure() / n_sub;
-          for (unsigned int i = 0; i < n_sub; ++i)
-            {
-              const Point<dim> reference = seeding_point<dim>(i, k);
-              Point<dim>       x;
-              for (unsigned int d = 0; d < dim; ++d)
-                x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
-              if (!body.contains(x))
-                continue;
-              std::fill(properties.begin(), properties.end(), 0.);
-              properties[layout.mass]           = material.density() * sub_volume;
-              properties[layout.initial_volume] = sub_volume;
-              properties[layout.body]           = b;
-              // v = v0 + omega x (x - c)
-              Tensor<1, 3> r, omega_cross_r;
-              for (unsigned int d = 0; d < dim; ++d)
-                r[d] = x[d] - centre[d];
-              omega_cross_r = cross_product_3d(body.angular_velocity, r);
-              for (unsigned int d = 0; d < dim; ++d)
-                properties[layout.velocity + d] = body.velocity[d] + omega_cross_r[d];
-              for (unsigned int d = 0; d < dim; ++d)
-                properties[layout.deformation + d * dim + d] = 1.;
-              if (body.lithostatic_stress)
-                {
-                  // p = rho g . (x - x_top) >= 0, sigma = -p I
-                  const double pressure =
-                    material.density() * (gravity * (x - top));
-                  for (unsigned int d = 0; d < 3; ++d)
-                    properties[layout.stress + d] = -pressure;
-                }
-              particle_handler.insert_particle(x, reference, next_id++, cell,
-                                                make_array_view(properties));
-            }
-        });
+        owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
+            const auto &     cell  = strip_cell.cell;
+            const Point<dim> lower = strip_cell.lower;
+            const Point<dim> upper = strip_cell.upper;
+            const double sub_volume = cell->measure() / n_sub;
+            for (unsigned int i = 0; i < n_sub; ++i)
+              {
+                const Point<dim> reference = seeding_point<dim>(i, k);
+                Point<dim>       x;
+                for (unsigned int d = 0; d < dim; ++d)
+                  x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
+                if (!body.contains(x))
+                  continue;
+                std::fill(properties.begin(), properties.end(), 0.);
+                properties[layout.mass]           = material.density() * sub_volume;
+                properties[layout.initial_volume] = sub_volume;
+                properties[layout.body]           = b;
+                // v = v0 + omega x (x - c)
+                Tensor<1, 3> r, omega_cross_r;
+                for (unsigned int d = 0; d < dim; ++d)
+                  r[d] = x[d] - centre[d];
+                omega_cross_r = cross_product_3d(body.angular_velocity, r);
+                for (unsigned int d = 0; d < dim; ++d)
+                  properties[layout.velocity + d] = body.velocity[d] + omega_cross_r[d];
+                for (unsigned int d = 0; d < dim; ++d)
+                  properties[layout.deformation + d * dim + d] = 1.;
+                if (body.lithostatic_stress)
+                  {
+                    // p = rho g . (x - x_top) >= 0, sigma = -p I
+                    const double pressure =
+                      material.density() * (gravity * (x - top));
+                    for (unsigned int d = 0; d < 3; ++d)
+                      properties[layout.stress + d] = -pressure;
+                  }
+                particle_handler.insert_particle(x, reference, next_id++, cell,
+                                                  make_array_view(properties));
+              }
+          });
       }
     // ids unique over all ranks: offset by the points of the lower ranks
     const MPI_Comm              communicator = triangulation.get_communicator();

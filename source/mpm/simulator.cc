@@ -50,6 +50,7 @@ namespace sable::mpm
     , boundary_conditions(parameters.boundaries)
     , grid_to_particle(grid, nodal_fields, body_wave_speed, velocity_gradients)
     , particle_series(parameters.output_directory, "particles", parameters.output_format)
+    , contact_node_series(parameters.output_directory, "contact_nodes", parameters.output_format)
   {
     if (parameters.grid_output)
       grid_output =
@@ -402,7 +403,8 @@ namespace sable::mpm
                                                                       cells_with_particles,
                                                                       contact.get(),
                                                                       state.time_step,
-                                                                      parameters.pic_fraction));
+                                                                      parameters.pic_fraction),
+                   true);
   }
 
   template <int dim>
@@ -414,7 +416,8 @@ namespace sable::mpm
                                                                     cells_with_particles,
                                                                     contact.get(),
                                                                     state.time_step,
-                                                                    parameters.pic_fraction));
+                                                                    parameters.pic_fraction),
+                   true);
   }
 
   template <int dim>
@@ -460,7 +463,8 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "grid to particles");
     process_report(
-      grid_to_particle.compute_strain_rates(*particle_handler, cells_with_particles, contact.get()));
+      grid_to_particle.compute_strain_rates(*particle_handler, cells_with_particles, contact.get()),
+      false);
   }
 
   template <int dim>
@@ -480,10 +484,11 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::process_report(const typename GridToParticle<dim>::Report &report)
+  Simulator<dim>::process_report(const typename GridToParticle<dim>::Report &report,
+                                 const bool                                  moved)
   {
-    // only the pass that moves the points measures speeds
-    const bool moved = report.max_signal_speed > 0 || report.not_finite || report.too_far;
+    // only the pass that moves the points measures speeds (every rank
+    // takes part in the reductions, also one without points)
     if (moved)
       {
         if (mesh_refinement)
@@ -599,14 +604,12 @@ namespace sable::mpm
                           state.time,
                           communicator);
     if (contact && parameters.contact_node_output)
-      write_contact_nodes(parameters.output_directory,
-                          counter,
-                          state.time,
-                          grid,
-                          contact->get_fields(),
-                          nodal_fields.n_owned_nodes(),
-                          communicator,
-                          contact_node_files);
+      {
+        ContactNodeOutput<dim> contact_nodes;
+        contact_nodes.build_patches(grid, contact->get_fields(), nodal_fields.n_owned_nodes());
+        contact_node_series.write(
+          contact_nodes, !contact_nodes.empty(), counter, state.time, communicator);
+      }
     if (grid_output)
       grid_output->write(grid, *particle_handler, counter, state.time, base_level);
     state.next_output_time = state.time + parameters.output_interval;

@@ -1,14 +1,19 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Contact-node output (Output/Contact node output): two disks colliding with
 sticking contact on two MPI ranks. In the files written while they touch:
-every normal is a unit vector (to the 9 digits written), the states are 0, 1 or 2, stuck nodes exist,
+every normal is a unit vector, the states are 0, 1 or 2, stuck nodes exist,
 and the contact forces on all bodies sum to zero (at two-body nodes the two
-corrections cancel) to 1e-9 of the sum of their magnitudes."""
+corrections cancel). The files hold single-precision values (deal.II's
+output patches), each rounded to within 2^-24 = 6e-8 of itself, so the sum
+is zero to 1e-7 of the sum of the force magnitudes, and a unit normal has
+length 1 to 1e-6. The files are read through meshio."""
 import glob
 import math
 import os
 import sys
 import xml.etree.ElementTree as ET
+
+import meshio
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "mpm"))
 from scene_test import WORK, check, finish, run  # noqa: E402
@@ -31,13 +36,15 @@ check("a contact_nodes.pvd series", os.path.exists(os.path.join(directory, "cont
 def read(pvtu):
     points = []
     for piece in ET.parse(pvtu).getroot().iter("Piece"):
-        root = ET.parse(os.path.join(directory, piece.get("Source"))).getroot()
-        arrays = {a.get("Name"): a.text.split() for a in root.iter("DataArray") if a.get("Name")}
-        n = len(arrays["body"])
-        for i in range(n):
-            points.append({"state": int(arrays["state"][i]),
-                           "normal": [float(x) for x in arrays["normal"][3 * i:3 * i + 3]],
-                           "force": [float(x) for x in arrays["contact_force"][3 * i:3 * i + 3]]})
+        path = os.path.join(directory, piece.get("Source"))
+        if ET.parse(path).getroot().find(".//Piece").get("NumberOfPoints") == "0":
+            continue  # a rank without contact nodes (meshio cannot read an empty piece)
+        mesh = meshio.read(path)
+        data = mesh.point_data
+        for i in range(len(mesh.points)):
+            points.append({"state": int(round(data["state"][i])),
+                           "normal": [float(x) for x in data["normal"][i]],
+                           "force": [float(x) for x in data["contact_force"][i]]})
     return points
 
 
@@ -55,7 +62,7 @@ for pvtu in files:
     check(f"{name}: stuck nodes present", any(p["state"] == 1 for p in points))
     total = [sum(p["force"][d] for p in points) for d in range(2)]
     size = sum(math.hypot(*p["force"][:2]) for p in points)
-    check(f"{name}: contact forces sum to zero", math.hypot(*total) <= 1e-9 * size,
+    check(f"{name}: contact forces sum to zero", math.hypot(*total) <= 1e-7 * size,
           f"|sum f| = {math.hypot(*total):.3g} N of {size:.3g} N")
 check("the disks touched in some output", touching > 0, f"{touching} files with contact")
 finish()

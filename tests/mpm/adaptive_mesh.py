@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Adaptive background grids (Mesh refinement subsection).
 
 1. Free fall on a grid refined around the body's surface and re-adapted

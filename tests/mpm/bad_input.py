@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Every kind of bad input stops the program before any step: non-zero exit,
 a message naming the entry, the value and what is allowed, and no output
 written (an existing statistics.csv is left untouched)."""
@@ -28,7 +28,7 @@ cases = [
     ("radius_zero", {}, {"Radius": 0}, ["Radius", "0", "> 0"]),
     ("friction_negative", {"Boundary conditions/Types": "2: friction",
                            "Boundary conditions/Friction coefficients": "2: -0.1"}, {}, ["Friction coefficients", "-0.1", ">= 0"]),
-    ("yield_missing", {}, {"Material": "von Mises"}, ["Yield stress", "0", "> 0"]),
+    ("yield_missing", {}, {"Material": "von Mises"}, ["Body 0/von Mises/Yield stress", "0", "> 0"]),
     ("refinement_levels", {"Mesh refinement/Criteria": "body surface", "Mesh refinement/Minimum level": 3,
                            "Mesh refinement/Maximum level": 2}, {}, ["Minimum level", "3", "<= 'Maximum level' = 2"]),
     ("refinement_nothing", {"Mesh refinement/Criteria": "contact", "Mesh refinement/Maximum level": 0}, {},

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Checkpoint and restart: two elastic disks colliding with frictional
 contact (Bardenhagen 2001, mu = 0.3) for N = 200 steps in one go, and the
 same scene stopped at step 100 (checkpoints every 50 steps and at the end),

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Elastic wave in a column between slip walls (uniaxial strain).
 
 A column of length L moving down at v0 lands at t = 0 on a slip floor (the

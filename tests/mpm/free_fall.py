@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Free fall of an elastic box (USL and MUSL, FLIP and a PIC blend): the
 centre-of-mass velocity is g t to 1e-10 relative, the position follows the
 discrete symplectic-Euler update y_{n+1} = y_n + dt_{n+1} v_{n+1} to round-off,

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """A box on a Coulomb friction wall under tilted gravity (angle theta).
 
 tan(theta) > mu: the box slides with a = g (sin(theta) - mu cos(theta));

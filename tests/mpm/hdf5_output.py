@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """HDF5 + XDMF particle output (Output format = hdf5) on 1 and 2 ranks: an
 elastic box 0.4 m x 0.3 m (density 1000, 2x2 points in each 0.05 m cell,
 192 points of 0.625 kg) falling freely. Each particles_NNNNN.h5, read back

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """One rank and two ranks give the same statistics.csv to 1e-10 relative
 (each column compared against the largest magnitude of its kind): a disk bouncing and
 rolling on a friction floor under tilted gravity, 2D and 3D, so particles
@@ -79,7 +79,7 @@ compare("plastic_box", {
     "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 1", "Grid/Subdivisions": "20, 20",
     "Boundary conditions/Types": "0: fixed, 1: moving", "Boundary conditions/Wall velocities": "1: -0.5; 0",
 }, [{"Shape": "box", "Lower corner": "0, 0.3", "Upper corner": "1, 0.7", "Material": "von Mises",
-     "Young's modulus": 1e6, "Poisson's ratio": 0.3, "Yield stress": 1e4, "Hardening modulus": 1e5,
+     "Young's modulus": 1e6, "Poisson's ratio": 0.3, "von Mises/Yield stress": 1e4, "von Mises/Hardening modulus": 1e5,
      "Density": 1000, "Particles per cell direction": 2}], more_ranks=(2, 4))
 compare("contact_2d", {
     "Dimension": 2, "Time/End time": 0.05, "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1",

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """No material point is lost silently, and unstable runs stop with where
 and when.
 

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """An elastic disk rolling down a friction wall (SPEC scene A1, theta = pi/6,
 mu = 0.5, 8 cells per diameter, to t = 0.5 s), with
 'Boundary conditions/Friction wall contact = material'.

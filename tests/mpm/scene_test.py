@@ -18,7 +18,8 @@ failures = []
 
 def prm_text(entries, bodies):
     """Build a parameter file: `entries` maps 'Subsection/Entry' (or 'Entry')
-    to a value; `bodies` is a list of dicts of body entries."""
+    to a value; `bodies` is a list of dicts of body entries ('Entry', or
+    'Subsection/Entry' for a material model's own entries)."""
     top = []
     sections = {}
     for key, value in entries.items():
@@ -35,7 +36,17 @@ def prm_text(entries, bodies):
         lines.append("end")
     for b, body in enumerate(bodies):
         lines.append(f"subsection Body {b}")
-        lines += [f"  set {k} = {v}" for k, v in body.items()]
+        lines += [f"  set {k} = {v}" for k, v in body.items() if "/" not in k]
+        # a material model's own entries: 'von Mises/Yield stress'
+        nested = {}
+        for key, value in body.items():
+            if "/" in key:
+                section, entry = key.split("/", 1)
+                nested.setdefault(section, []).append((entry, value))
+        for section, items in nested.items():
+            lines.append(f"  subsection {section}")
+            lines += [f"    set {k} = {v}" for k, v in items]
+            lines.append("  end")
         lines.append("end")
     return "\n".join(lines) + "\n"
 

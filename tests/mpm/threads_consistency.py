@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Threads do not change MPM results: a scene run with one thread, with
 `--threads 2` and with SABLE_THREADS=3 writes byte-identical statistics.csv.
 The threaded loops are the particle-to-grid scatter and the search for
@@ -29,8 +29,8 @@ entries = {
     "Grid/Subdivisions": "40, 20", "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": 0.3,
     "Output directory": "output",
 }
-plastic = {"Material": "von Mises", "Young's modulus": 1e6, "Poisson's ratio": 0.3, "Yield stress": 2e3,
-           "Hardening modulus": 1e4, "Density": 1000, "Particles per cell direction": 2}
+plastic = {"Material": "von Mises", "Young's modulus": 1e6, "Poisson's ratio": 0.3, "von Mises/Yield stress": 2e3,
+           "von Mises/Hardening modulus": 1e4, "Density": 1000, "Particles per cell direction": 2}
 bodies = [dict(plastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0"),
           dict(plastic, Shape="disk", Center="1.255, 0.56", Radius=0.2, Velocity="-5, 0")]
 

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """QuSGM checkpoint/restart: the demo scene (preparation, then ten
 uniaxial-strain increments) run without a stop, against runs stopped after
 five increments of the load path with 'Checkpoint interval = 2' (so the

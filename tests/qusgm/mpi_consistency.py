@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """QuSGM with the grains distributed over MPI ranks gives the answer of one
 rank: the demo scene (150 grains: frictionless compaction with growth of
 grains, friction activation, ten uniaxial-strain increments) on 1, 2 and 3

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Validation scene A1 in small: an elastic disk on an incline (paper 000,
 Figs. 2-4) at 8 cells per diameter (cell 0.25 R), 0.5 s, one slipping and one
 rolling case, against the rigid-disk solution from rest

@@ -249,9 +249,10 @@ namespace sable::mpm
     setup_after_mesh_change();
 
     // --- reports and output ---
-    /// The speeds and failures a grid-to-particle pass found.
+    /// The speeds and failures a grid-to-particle pass found; @p moved:
+    /// the pass moved the points (their speeds set the next time step).
     void
-    process_report(const typename GridToParticle<dim>::Report &report);
+    process_report(const typename GridToParticle<dim>::Report &report, const bool moved);
     /// Console line: material points, cells and work per rank (min .. max).
     void
     print_balance() const;
@@ -306,7 +307,8 @@ namespace sable::mpm
 
     std::unique_ptr<StatisticsFile<dim>>        statistics_file;
     OutputSeries                                particle_series;
-    std::vector<std::pair<double, std::string>> contact_node_files;
+    /// only with Output/Contact node output
+    OutputSeries                                contact_node_series;
     /// only with Output/Grid output
     std::unique_ptr<GridOutput<dim>> grid_output;
   };

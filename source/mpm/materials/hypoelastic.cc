@@ -1,7 +1,20 @@
+#include <sable/base/input_error.h>
+#include <sable/mpm/materials/material_registry.h>
 #include <sable/mpm/materials/hypoelastic.h>
 
 namespace sable::mpm
 {
+  namespace
+  {
+    const MaterialRegistration registration({"linear elastic",
+                                              nullptr,
+                                              nullptr,
+                                              nullptr,
+                                              [](const MaterialParameters &p) {
+                                                return std::make_unique<Hypoelastic>(p);
+                                              }});
+  } // namespace
+
   void
   Hypoelastic::update_stress(const Tensor<2, 3> &L,
                              const Tensor<2, 3> &,

@@ -1,12 +1,9 @@
 #include <sable/base/input_error.h>
-#include <sable/mpm/materials/hypoelastic.h>
 #include <sable/mpm/materials/material.h>
-#include <sable/mpm/materials/neo_hookean.h>
-#include <sable/mpm/materials/von_mises.h>
+#include <sable/mpm/materials/material_registry.h>
 
 #include <cmath>
-#include <functional>
-#include <map>
+#include <algorithm>
 
 namespace sable::mpm
 {
@@ -47,23 +44,59 @@ namespace sable::mpm
                           2. * G * D);
   }
 
+  namespace
+  {
+    /// function-local, so that registrations from any file's static
+    /// objects find it constructed
+    std::vector<MaterialModelEntry> &
+    registry()
+    {
+      static std::vector<MaterialModelEntry> models;
+      return models;
+    }
+  } // namespace
+
+  MaterialRegistration::MaterialRegistration(MaterialModelEntry entry)
+  {
+    auto &models = registry();
+    const auto position =
+      std::find_if(models.begin(), models.end(), [&](const MaterialModelEntry &m) {
+        return m.name > entry.name;
+      });
+    models.insert(position, std::move(entry));
+  }
+
+  const std::vector<MaterialModelEntry> &
+  material_models()
+  {
+    return registry();
+  }
+
+  std::string
+  material_model_names()
+  {
+    std::string names;
+    for (const MaterialModelEntry &model : registry())
+      names += (names.empty() ? "" : "|") + model.name;
+    return names;
+  }
+
+  const MaterialModelEntry &
+  find_material_model(const std::string &name, const std::string &entry)
+  {
+    for (const MaterialModelEntry &model : registry())
+      if (model.name == name)
+        return model;
+    std::string names = material_model_names();
+    for (auto &c : names)
+      if (c == '|')
+        c = ',';
+    throw InputError("invalid input: '" + entry + " = " + name + "'; allowed: one of: " + names);
+  }
+
   std::unique_ptr<Material>
   create_material(const MaterialParameters &parameters)
   {
-    static const std::map<
-      std::string,
-      std::function<std::unique_ptr<Material>(const MaterialParameters &)>>
-      registry = {{"linear elastic",
-                   [](const auto &p) { return std::make_unique<Hypoelastic>(p); }},
-                  {"neo-Hookean",
-                   [](const auto &p) { return std::make_unique<NeoHookean>(p); }},
-                  {"von Mises",
-                   [](const auto &p) { return std::make_unique<VonMises>(p); }}};
-    const auto it = registry.find(parameters.model);
-    check_input(it != registry.end(),
-                "Material",
-                parameters.model,
-                "linear elastic | neo-Hookean | von Mises");
-    return it->second(parameters);
+    return find_material_model(parameters.model, "Material").create(parameters);
   }
 } // namespace sable::mpm

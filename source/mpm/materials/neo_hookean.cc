@@ -1,9 +1,22 @@
+#include <sable/base/input_error.h>
+#include <sable/mpm/materials/material_registry.h>
 #include <sable/mpm/materials/neo_hookean.h>
 
 #include <cmath>
 
 namespace sable::mpm
 {
+  namespace
+  {
+    const MaterialRegistration registration({"neo-Hookean",
+                                              nullptr,
+                                              nullptr,
+                                              nullptr,
+                                              [](const MaterialParameters &p) {
+                                                return std::make_unique<NeoHookean>(p);
+                                              }});
+  } // namespace
+
   void
   NeoHookean::update_stress(const Tensor<2, 3> &,
                             const Tensor<2, 3> &F,

@@ -1,9 +1,53 @@
+#include <sable/base/input_error.h>
+#include <sable/mpm/materials/material_registry.h>
 #include <sable/mpm/materials/von_mises.h>
 
 #include <cmath>
 
 namespace sable::mpm
 {
+  namespace
+  {
+    void
+    declare_von_mises_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Yield stress", "0", Patterns::Double(), "Initial yield stress, Pa, > 0.");
+      prm.declare_entry("Hardening modulus",
+                        "0",
+                        Patterns::Double(),
+                        "Linear isotropic hardening modulus H, Pa, >= 0: "
+                        "sigma_y = sigma_y0 + H * equivalent plastic strain.");
+    }
+
+    void
+    parse_von_mises_parameters(const ParameterHandler &prm, MaterialParameters &parameters)
+    {
+      parameters.yield_stress      = prm.get_double("Yield stress");
+      parameters.hardening_modulus = prm.get_double("Hardening modulus");
+    }
+
+    void
+    check_von_mises_parameters(const MaterialParameters &parameters, const std::string &path)
+    {
+      check_input(parameters.yield_stress > 0,
+                  path + "Yield stress",
+                  parameters.yield_stress,
+                  "a number > 0 (Pa) for the von Mises material");
+      check_input(parameters.hardening_modulus >= 0,
+                  path + "Hardening modulus",
+                  parameters.hardening_modulus,
+                  "a number >= 0 (Pa)");
+    }
+
+    const MaterialRegistration registration({"von Mises",
+                                              &declare_von_mises_parameters,
+                                              &parse_von_mises_parameters,
+                                              &check_von_mises_parameters,
+                                              [](const MaterialParameters &p) {
+                                                return std::make_unique<VonMises>(p);
+                                              }});
+  } // namespace
+
   void
   VonMises::update_stress(const Tensor<2, 3> &L,
                           const Tensor<2, 3> &,

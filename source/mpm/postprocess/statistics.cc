@@ -14,42 +14,54 @@ namespace sable::mpm
     const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
     const bool                                                write,
     const bool                                                append)
-    : with_contact(with_contact)
   {
-    if (!write)
-      return;
-    if (append)
-      {
-        file = std::make_unique<std::ofstream>(filename, std::ios::app);
-        *file << std::setprecision(17);
-        return;
-      }
-    file = std::make_unique<std::ofstream>(filename);
-    const char *axes = "xyz";
-    *file << "step,time,dt,particles,cells,kinetic_energy,strain_energy,gravity_energy,"
-             "boundary_work";
+    // the columns: name and value, in the order of the file
+    const auto add = [this](const std::string &name, std::function<double(const Row &)> value) {
+      columns.push_back({name, std::move(value)});
+    };
+    const std::string axes = "xyz";
+    add("step", [](const Row &r) { return r.step; });
+    add("time", [](const Row &r) { return r.time; });
+    add("dt", [](const Row &r) { return r.dt; });
+    add("particles", [](const Row &r) { return r.statistics.n_particles; });
+    add("cells", [](const Row &r) { return r.statistics.n_cells; });
+    add("kinetic_energy", [](const Row &r) { return r.statistics.kinetic_energy; });
+    add("strain_energy", [](const Row &r) { return r.statistics.strain_energy; });
+    add("gravity_energy", [](const Row &r) { return r.statistics.gravity_energy; });
+    add("boundary_work", [](const Row &r) { return r.boundary_work; });
     for (unsigned int d = 0; d < dim; ++d)
-      *file << ",momentum_" << axes[d];
+      add("momentum_" + axes.substr(d, 1), [d](const Row &r) { return r.statistics.momentum[d]; });
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
+        const std::string body = "body" + std::to_string(b);
         for (unsigned int d = 0; d < dim; ++d)
-          *file << ",body" << b << '_' << axes[d];
+          add(body + "_" + axes.substr(d, 1),
+              [b, d](const Row &r) { return r.statistics.body_position[b][d]; });
         for (unsigned int d = 0; d < dim; ++d)
-          *file << ",body" << b << "_v" << axes[d];
-        if (dim == 2)
-          *file << ",body" << b << "_omega";
-        else
-          for (unsigned int d = 0; d < 3; ++d)
-            *file << ",body" << b << "_omega_" << axes[d];
+          add(body + "_v" + axes.substr(d, 1),
+              [b, d](const Row &r) { return r.statistics.body_velocity[b][d]; });
+        // 2D: the rotation about z only
+        for (unsigned int d = (dim == 2 ? 2 : 0); d < 3; ++d)
+          add(body + (dim == 2 ? "_omega" : "_omega_" + axes.substr(d, 1)),
+              [b, d](const Row &r) { return r.statistics.body_angular_velocity[b][d]; });
       }
     if (with_contact)
       {
-        *file << ",contact_heat";
-        for (const auto &[a, b] : pairs)
+        add("contact_heat", [](const Row &r) { return r.statistics.contact_heat; });
+        for (unsigned int i = 0; i < pairs.size(); ++i)
           for (unsigned int d = 0; d < dim; ++d)
-            *file << ",contact" << a << '_' << b << "_f" << axes[d];
+            add("contact" + std::to_string(pairs[i].first) + "_" +
+                  std::to_string(pairs[i].second) + "_f" + axes.substr(d, 1),
+                [i, d](const Row &r) { return r.statistics.pair_forces[i][d]; });
       }
-    *file << '\n' << std::setprecision(17);
+
+    if (!write)
+      return;
+    file = std::make_unique<std::ofstream>(filename, append ? std::ios::app : std::ios::out);
+    if (!append)
+      for (unsigned int c = 0; c < columns.size(); ++c)
+        *file << (c ? "," : "") << columns[c].name << (c + 1 == columns.size() ? "\n" : "");
+    *file << std::setprecision(17);
   }
 
   template <int dim>
@@ -62,31 +74,9 @@ namespace sable::mpm
   {
     if (!file)
       return;
-    *file << step << ',' << time << ',' << dt << ',' << s.n_particles << ',' << s.n_cells << ','
-          << s.kinetic_energy << ','
-          << s.strain_energy << ',' << s.gravity_energy << ','
-          << boundary_work;
-    for (unsigned int d = 0; d < dim; ++d)
-      *file << ',' << s.momentum[d];
-    for (unsigned int b = 0; b < s.body_mass.size(); ++b)
-      {
-        for (unsigned int d = 0; d < dim; ++d)
-          *file << ',' << s.body_position[b][d];
-        for (unsigned int d = 0; d < dim; ++d)
-          *file << ',' << s.body_velocity[b][d];
-        if (dim == 2)
-          *file << ',' << s.body_angular_velocity[b][2];
-        else
-          for (unsigned int d = 0; d < 3; ++d)
-            *file << ',' << s.body_angular_velocity[b][d];
-      }
-    if (with_contact)
-      {
-        *file << ',' << s.contact_heat;
-        for (const auto &force : s.pair_forces)
-          for (unsigned int d = 0; d < dim; ++d)
-            *file << ',' << force[d];
-      }
+    const Row row{step, time, dt, boundary_work, s};
+    for (unsigned int c = 0; c < columns.size(); ++c)
+      *file << (c ? "," : "") << columns[c].value(row);
     *file << '\n';
     file->flush();
   }

@@ -4,7 +4,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
-#include <sable/mpm/parameters.h>
+#include <sable/mpm/materials/material_parameters.h>
 
 #include <memory>
 #include <vector>

@@ -10,6 +10,7 @@
 #include <sable/mpm/particle_layout.h>
 
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,8 +67,23 @@ namespace sable::mpm
               const Statistics<dim> &  statistics);
 
   private:
+    /// what one row is made of
+    struct Row
+    {
+      double                 step;
+      double                 time;
+      double                 dt;
+      double                 boundary_work;
+      const Statistics<dim> &statistics;
+    };
+    struct Column
+    {
+      std::string                        name;
+      std::function<double(const Row &)> value;
+    };
+    /// the file's columns, in order: the header and every row come from it
+    std::vector<Column>            columns;
     std::unique_ptr<std::ofstream> file;
-    bool                           with_contact = false;
   };
   /**
    * Energies, momentum and per-body centre of mass, velocity and angular

@@ -1,0 +1,72 @@
+#ifndef sable_mpm_bodies_body_parameters_h
+#define sable_mpm_bodies_body_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <sable/mpm/materials/material_parameters.h>
+
+#include <string>
+#include <utility>
+
+namespace sable::mpm
+{
+  using namespace dealii;
+
+  /// One body: its shape, seeding, material, initial motion and stress,
+  /// contact group (subsection 'Body <b>').
+  template <int dim>
+  struct BodyParameters
+  {
+    enum class Shape
+    {
+      disk, ///< a disk in 2D, a sphere in 3D
+      box
+    };
+    Shape        shape  = Shape::disk;
+    Point<dim>   center = {};
+    double       radius = 0.;
+    Point<dim>   lower_corner = {};
+    Point<dim>   upper_corner = {};
+    unsigned int particles_per_direction = 2;
+
+    MaterialParameters material;
+
+    Tensor<1, dim> velocity = {};
+    /// Rigid rotation about the body centre (2D uses only the z component).
+    Tensor<1, 3> angular_velocity = {};
+    /// Initialise σ = −p I with ∇p = ρ g, p = 0 at the body's top.
+    bool lithostatic_stress = false;
+    /// Contact group: friction coefficients are set per pair of groups.
+    unsigned int group = 0;
+    /// Refine around this body's surface (Mesh refinement criterion
+    /// 'body surface').
+    bool refine_surface = true;
+
+    /// Axis-aligned bounding box of the shape.
+    std::pair<Point<dim>, Point<dim>>
+    bounding_box() const;
+    bool
+    contains(const Point<dim> &x) const;
+    /// The point of the shape lowest in the potential −g·x (where p = 0).
+    Point<dim>
+    top_point(const Tensor<1, dim> &gravity) const;
+
+    /// Declare a body's entries in the current subsection.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// Read the current subsection; @p path ("Body 0/") prefixes entries
+    /// in messages.
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &path);
+
+    /// Throw InputError (naming path + entry) for invalid values: the one
+    /// check of a body, for scene files and add_body() alike.
+    void
+    check(const std::string &path) const;
+  };
+} // namespace sable::mpm
+
+#endif

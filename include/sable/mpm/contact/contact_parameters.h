@@ -1,0 +1,61 @@
+#ifndef sable_mpm_contact_contact_parameters_h
+#define sable_mpm_contact_contact_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <algorithm>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace sable::mpm
+{
+  using namespace dealii;
+
+  /// Multi-body contact (SPEC Part A steps 3-7; subsection 'Contact').
+  struct ContactParameters
+  {
+    enum class Model
+    {
+      none,             ///< one velocity field: no-slip, no separation
+      bardenhagen_2000, ///< act while bodies approach
+      bardenhagen_2001  ///< ... or while the normal traction is compressive
+    };
+    Model model = Model::none;
+    /// How a node's body normals are made collinear: from the bodies'
+    /// mass-gradient directions weighted by their nodal masses (the
+    /// default), or with equal weights, n = (n1 - n2)/|n1 - n2| (papers).
+    bool mass_weighted_normals = true;
+    /// Coulomb coefficient for pairs of groups not listed below;
+    /// infinity means sticking contact.
+    double                                                  friction = 0.;
+    std::map<std::pair<unsigned int, unsigned int>, double> group_friction;
+    /// Impulse scaling factor gamma in [0.5, 1]; 0 switches scaling off.
+    double impulse_scaling = 0.5;
+    /// Apply contact to the velocities after the momentum update, and to
+    /// the velocities the strain update uses (MUSL's remapped velocities).
+    bool on_momentum_update = true;
+    bool on_strain_update   = true;
+    /// Pairs of bodies whose contact force goes to statistics.csv.
+    std::vector<std::pair<unsigned int, unsigned int>> reported_pairs;
+
+    double
+    friction_between(const unsigned int group_a, const unsigned int group_b) const
+    {
+      const auto it =
+        group_friction.find({std::min(group_a, group_b), std::max(group_a, group_b)});
+      return it == group_friction.end() ? friction : it->second;
+    }
+
+    /// Declare the entries of the current subsection.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// Read the current subsection of a scene with @p n_bodies bodies
+    /// (Reported pairs name bodies); values are checked as they are read.
+    void
+    parse_parameters(const ParameterHandler &prm, const unsigned int n_bodies);
+  };
+} // namespace sable::mpm
+
+#endif

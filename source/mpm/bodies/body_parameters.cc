@@ -1,0 +1,157 @@
+#include <deal.II/base/utilities.h>
+
+#include <sable/base/input_error.h>
+#include <sable/base/named_choice.h>
+#include <sable/mpm/bodies/body_parameters.h>
+#include <sable/mpm/parameter_tools.h>
+
+namespace sable::mpm
+{
+  namespace
+  {
+    template <int dim>
+    const NamedChoice<typename BodyParameters<dim>::Shape> &
+    shapes()
+    {
+      using Shape = typename BodyParameters<dim>::Shape;
+      static const NamedChoice<Shape> choice{{"disk", Shape::disk},
+                                             {"sphere", Shape::disk},
+                                             {"box", Shape::box}};
+      return choice;
+    }
+  } // namespace
+
+  template <int dim>
+  std::pair<Point<dim>, Point<dim>>
+  BodyParameters<dim>::bounding_box() const
+  {
+    if (shape == Shape::box)
+      return {lower_corner, upper_corner};
+    Point<dim> lo = center, hi = center;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] -= radius;
+        hi[d] += radius;
+      }
+    return {lo, hi};
+  }
+
+  template <int dim>
+  bool
+  BodyParameters<dim>::contains(const Point<dim> &x) const
+  {
+    if (shape == Shape::disk)
+      return (x - center).norm_square() <= radius * radius;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
+        return false;
+    return true;
+  }
+
+  template <int dim>
+  Point<dim>
+  BodyParameters<dim>::top_point(const Tensor<1, dim> &gravity) const
+  {
+    if (shape == Shape::disk)
+      {
+        const double g = gravity.norm();
+        return g > 0 ? center - radius * gravity / g : center;
+      }
+    Point<dim> top;
+    for (unsigned int d = 0; d < dim; ++d)
+      top[d] = gravity[d] > 0 ? lower_corner[d] : upper_corner[d];
+    return top;
+  }
+
+  template <int dim>
+  void
+  BodyParameters<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    const std::string zero = zero_vector(dim);
+    prm.declare_entry("Shape", "disk", shapes<dim>().pattern(), "disk (2D) or sphere (3D), or box.");
+    prm.declare_entry("Center", zero, Patterns::List(Patterns::Double(), dim, dim), "Disk/sphere centre, m.");
+    prm.declare_entry("Radius", "0", Patterns::Double(), "Disk/sphere radius, m, > 0.");
+    prm.declare_entry("Lower corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box lower corner, m.");
+    prm.declare_entry("Upper corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box upper corner, m.");
+    prm.declare_entry("Particles per cell direction",
+                      "2",
+                      Patterns::Integer(0),
+                      "k in 1..4: k^dim material points per cell, at the "
+                      "centres of equal sub-cells.");
+    MaterialParameters::declare_parameters(prm);
+    prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
+    prm.declare_entry("Angular velocity",
+                      dim == 2 ? "0" : "0, 0, 0",
+                      Patterns::List(Patterns::Double(), dim == 2 ? 1 : 3, dim == 2 ? 1 : 3),
+                      "Initial rigid rotation about the centre, rad/s "
+                      "(2D: one number, counter-clockwise).");
+    prm.declare_entry("Refine surface",
+                      "true",
+                      Patterns::Bool(),
+                      "Whether the 'body surface' refinement criterion "
+                      "refines around this body's surface (false, e.g., for "
+                      "a large plane a grain rolls on: only where the "
+                      "grain touches it, with the 'contact' criterion).");
+    prm.declare_entry("Group",
+                      "0",
+                      Patterns::Integer(0),
+                      "Contact group; friction is set per pair of groups "
+                      "(Contact/Group friction).");
+    prm.declare_entry("Lithostatic initial stress",
+                      "false",
+                      Patterns::Bool(),
+                      "Start from sigma = -p I with grad p = rho g and "
+                      "p = 0 at the body's top (linear elastic and von "
+                      "Mises bodies).");
+  }
+
+  template <int dim>
+  void
+  BodyParameters<dim>::parse_parameters(ParameterHandler &prm, const std::string &path)
+  {
+    shape        = shapes<dim>().value(prm.get("Shape"));
+    center       = Point<dim>(read_vector<dim>(prm, "Center", path));
+    radius       = prm.get_double("Radius");
+    lower_corner = Point<dim>(read_vector<dim>(prm, "Lower corner", path));
+    upper_corner = Point<dim>(read_vector<dim>(prm, "Upper corner", path));
+    particles_per_direction = prm.get_integer("Particles per cell direction");
+    material.parse_parameters(prm, path);
+    velocity = read_vector<dim>(prm, "Velocity", path);
+    const std::vector<double> omega =
+      Utilities::string_to_double(Utilities::split_string_list(prm.get("Angular velocity")));
+    if (dim == 2)
+      angular_velocity[2] = omega[0];
+    else
+      for (unsigned int d = 0; d < 3; ++d)
+        angular_velocity[d] = omega[d];
+    lithostatic_stress = prm.get_bool("Lithostatic initial stress");
+    group              = prm.get_integer("Group");
+    refine_surface     = prm.get_bool("Refine surface");
+  }
+
+  template <int dim>
+  void
+  BodyParameters<dim>::check(const std::string &path) const
+  {
+    if (shape == Shape::disk)
+      check_input(radius > 0, path + "Radius", radius, "a number > 0 (m)");
+    else
+      for (unsigned int d = 0; d < dim; ++d)
+        check_input(upper_corner[d] > lower_corner[d],
+                    path + "Upper corner",
+                    upper_corner,
+                    "each component larger than the Lower corner's");
+    check_input(particles_per_direction >= 1 && particles_per_direction <= 4,
+                path + "Particles per cell direction",
+                particles_per_direction,
+                "an integer in 1..4");
+    material.check(path);
+    check_input(!lithostatic_stress || material.model != "neo-Hookean",
+                path + "Lithostatic initial stress",
+                "true",
+                "false for neo-Hookean bodies (their stress follows from F)");
+  }
+
+  template struct BodyParameters<2>;
+  template struct BodyParameters<3>;
+} // namespace sable::mpm

@@ -1,0 +1,124 @@
+#include <deal.II/base/utilities.h>
+
+#include <sable/base/input_error.h>
+#include <sable/base/named_choice.h>
+#include <sable/mpm/contact/contact_parameters.h>
+#include <sable/mpm/parameter_tools.h>
+
+namespace sable::mpm
+{
+  namespace
+  {
+    const NamedChoice<ContactParameters::Model> models{
+      {"none", ContactParameters::Model::none},
+      {"bardenhagen 2000", ContactParameters::Model::bardenhagen_2000},
+      {"bardenhagen 2001", ContactParameters::Model::bardenhagen_2001}};
+
+    /// Normals: mass weighted (true) or average (false)
+    const NamedChoice<bool> normals{{"mass weighted", true}, {"average", false}};
+  } // namespace
+
+  void
+  ContactParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Model",
+                      "none",
+                      models.pattern(),
+                      "Contact between bodies. none: all bodies share one "
+                      "velocity field (no slip, no separation, no cost). "
+                      "bardenhagen 2000: a velocity field per body, Coulomb "
+                      "friction while bodies approach. bardenhagen 2001: also "
+                      "while the normal traction is compressive.");
+    prm.declare_entry("Normals",
+                      "mass weighted",
+                      normals.pattern(),
+                      "How the bodies' normals at a node are made collinear "
+                      "(so contact conserves momentum): 'average' is the "
+                      "papers' n = (n1 - n2)/|n1 - n2| of the unit mass-"
+                      "gradient directions; 'mass weighted' weights each "
+                      "direction by the body's nodal mass, so that a large "
+                      "flat body's normal is not tilted by a small body's "
+                      "corner (see doc/mpm.md).");
+    prm.declare_entry("Friction coefficient",
+                      "0",
+                      Patterns::Anything(),
+                      "Coulomb coefficient >= 0 between any two groups not "
+                      "listed in 'Group friction'; 'stick' for no slip.");
+    prm.declare_entry("Group friction",
+                      "",
+                      Patterns::Anything(),
+                      "Coefficients per pair of body groups, e.g. "
+                      "'0-1: 0.5, 1-1: stick'.");
+    prm.declare_entry("Impulse scaling",
+                      "0.5",
+                      Patterns::Anything(),
+                      "gamma in [0.5, 1] of the contact-impulse scaling "
+                      "(paper 002, with the erratum min(...,1)), or 'off'.");
+    prm.declare_entry("Passes",
+                      "momentum update, strain update",
+                      Patterns::MultipleSelection("momentum update|strain update"),
+                      "Where contact acts: on the velocities after the "
+                      "momentum update, and on the velocities the strain "
+                      "update uses (MUSL's remapped velocities).");
+    prm.declare_entry("Reported pairs",
+                      "all",
+                      Patterns::Anything(),
+                      "Body pairs whose total contact force goes to "
+                      "statistics.csv, e.g. '0-1, 1-2'; 'all' (every pair "
+                      "when there are at most 4 bodies) or 'none'.");
+  }
+
+  void
+  ContactParameters::parse_parameters(const ParameterHandler &prm, const unsigned int n_bodies)
+  {
+    ContactParameters &c = *this;
+    c.model                 = models.value(prm.get("Model"));
+    c.mass_weighted_normals = normals.value(prm.get("Normals"));
+    c.friction = parse_friction(prm.get("Friction coefficient"), "Contact/Friction coefficient");
+    for (const auto &[pair, value] : split_map(prm.get("Group friction")))
+      {
+        const auto groups = Utilities::split_string_list(pair, '-');
+        check_input(groups.size() == 2,
+                    "Contact/Group friction", pair + ": " + value,
+                    "entries '<group>-<group>: <coefficient or stick>'");
+        const unsigned int a = Utilities::string_to_int(groups[0]);
+        const unsigned int b = Utilities::string_to_int(groups[1]);
+        c.group_friction[{std::min(a, b), std::max(a, b)}] =
+          parse_friction(value, "Contact/Group friction");
+      }
+    const std::string scaling = prm.get("Impulse scaling");
+    if (scaling == "off")
+      c.impulse_scaling = 0.;
+    else
+      {
+        c.impulse_scaling = to_double(scaling);
+        check_input(c.impulse_scaling >= 0.5 && c.impulse_scaling <= 1.,
+                    "Contact/Impulse scaling", scaling, "a number in [0.5, 1] or 'off'");
+      }
+    const std::string passes = prm.get("Passes");
+    c.on_momentum_update = passes.find("momentum update") != std::string::npos;
+    c.on_strain_update   = passes.find("strain update") != std::string::npos;
+    const std::string pairs = prm.get("Reported pairs");
+    if (pairs == "all")
+      {
+        if (n_bodies <= 4)
+          for (unsigned int a = 0; a < n_bodies; ++a)
+            for (unsigned int b = a + 1; b < n_bodies; ++b)
+              c.reported_pairs.emplace_back(a, b);
+      }
+    else if (pairs != "none")
+      for (const std::string &pair : Utilities::split_string_list(pairs, ','))
+        {
+          const auto bodies = Utilities::split_string_list(pair, '-');
+          check_input(bodies.size() == 2 &&
+                        Utilities::string_to_int(bodies[0]) < int(n_bodies) &&
+                        Utilities::string_to_int(bodies[1]) < int(n_bodies) &&
+                        bodies[0] != bodies[1],
+                      "Contact/Reported pairs", pair,
+                      "pairs '<body>-<body>' of two different bodies below Number of bodies");
+          const unsigned int a = Utilities::string_to_int(bodies[0]);
+          const unsigned int b = Utilities::string_to_int(bodies[1]);
+          c.reported_pairs.emplace_back(std::min(a, b), std::max(a, b));
+        }
+  }
+} // namespace sable::mpm
