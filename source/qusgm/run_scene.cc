@@ -462,7 +462,9 @@ namespace sable::qusgm
                           pack.centre[i][a] < walls.position[a + 3],
                         "Walls/Positions (" + pack.name(i) + " centre)",
                         pack.centre[i], "every grain centre inside the walls");
-        check_overlaps(pack, walls, max_overlap, "Pack file " + pack_file);
+        check_overlaps(pack, walls, max_overlap,
+                       source == "state" ? "State " + pack_file + "/grains.csv" :
+                                           "Pack file " + pack_file);
       }
     else
       {
