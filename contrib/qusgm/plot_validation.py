@@ -22,14 +22,15 @@ def read(path):
         rows = list(csv.DictReader(f))
     out = []
     for r in rows:
-        try:
+        try:  # an undefined modulus or sliding ratio is an empty field: skip the row
             k, g = float(r["bulk_modulus"]), float(r["shear_modulus"])
+            sliding = float(r["sliding_ratio"])
         except ValueError:
             continue
         out.append(dict(stage=r["stage"], s=float(r["confining_stress"]), k=k, g=g,
                         z=float(r["coordination_number"]),
                         phi=float(r.get("solid_fraction", 0.64)),
-                        sliding=float(r["sliding_ratio"])))
+                        sliding=sliding))
     return out
 
 

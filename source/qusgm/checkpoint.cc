@@ -60,27 +60,6 @@ namespace sable::qusgm
       }
     };
 
-    /// The contacts of all ranks on rank 0, each once, in key order.
-    std::vector<Contact>
-    all_contacts(const std::vector<Contact> &held,
-                 const ContactNetwork       &network,
-                 const unsigned int          n_grains)
-    {
-      std::vector<Contact> own;
-      std::copy_if(held.begin(), held.end(), std::back_inserter(own), [&](const Contact &c) {
-        return network.owns(c);
-      });
-      const MPI_Comm communicator = network.get_partition().get_communicator();
-      if (network.get_partition().n_ranks() == 1)
-        return own;
-      std::vector<Contact> all;
-      for (const auto &part : dealii::Utilities::MPI::gather(communicator, own, 0))
-        all.insert(all.end(), part.begin(), part.end());
-      std::sort(all.begin(), all.end(), [n_grains](const Contact &a, const Contact &b) {
-        return a.key(n_grains) < b.key(n_grains);
-      });
-      return all;
-    }
   } // namespace
 
 
@@ -101,8 +80,8 @@ namespace sable::qusgm
     saved.have_previous      = have_previous;
     saved.last_theta         = last_theta;
     saved.last_moves         = last_moves;
-    saved.pairs              = all_contacts(network.pairs, network, pack.size());
-    saved.wall_contacts      = all_contacts(network.wall_contacts, network, pack.size());
+    saved.pairs              = network.gather_on_root(network.pairs, pack.size());
+    saved.wall_contacts      = network.gather_on_root(network.wall_contacts, pack.size());
     if (dealii::Utilities::MPI::this_mpi_process(communicator) != 0)
       return "";
     std::ostringstream bytes;

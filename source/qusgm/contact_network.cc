@@ -1,7 +1,13 @@
+#include <deal.II/base/mpi.h>
+
+#include <sable/base/input_error.h>
 #include <sable/qusgm/contact_laws.h>
 #include <sable/qusgm/contact_network.h>
 
+#include <boost/serialization/vector.hpp>
+
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <limits>
 
@@ -284,5 +290,84 @@ namespace sable::qusgm
       initialise(c, false, pack, walls, model);
     for (Contact &c : wall_contacts)
       initialise(c, true, pack, walls, model);
+  }
+
+  void
+  ContactNetwork::set_reference_loads(const Pack                     &pack,
+                                      const Walls                    &walls,
+                                      const ContactModel             &model,
+                                      const double                    skin_distance,
+                                      const std::vector<ContactLoad> &loads)
+  {
+    if (positions_at_build.size() != pack.size())
+      build(pack, walls, pack.centre, walls, model, skin_distance);
+    const unsigned int n = pack.size();
+    for (const ContactLoad &load : loads)
+      {
+        // Closed at the reference? (every rank decides alike)
+        const double h =
+          load.wall ? walls.overlap(load.other, pack.centre[load.i], pack.radius[load.i]) :
+                      pack.radius[load.i] + pack.radius[load.other] -
+                        (pack.centre[load.i] - pack.centre[load.other]).norm();
+        if (!(h > 0))
+          check_input(false,
+                      load.where,
+                      pack.name(load.i) + " and " +
+                        (load.wall ? std::string("wall ") + Walls::name(load.other) :
+                                     pack.name(load.other)) +
+                        ", overlap " + std::to_string(h) + " m",
+                      "contacts whose grains overlap (a closed contact of the pack)");
+        std::vector<Contact> &list = load.wall ? wall_contacts : pairs;
+        Contact               probe{};
+        probe.i     = load.i;
+        probe.other = load.other;
+        const auto found =
+          std::lower_bound(list.begin(), list.end(), probe, [n](const Contact &a, const Contact &b) {
+            return a.key(n) < b.key(n);
+          });
+        if (found == list.end() || found->key(n) != probe.key(n))
+          continue; // held by another rank
+        Contact     &c = *found;
+        Tensor<1, 3> normal;
+        if (load.wall)
+          normal[Walls::axis(c.other)] = Walls::sign(c.other);
+        else
+          normal = (pack.centre[c.i] - pack.centre[c.other]) /
+                   (pack.centre[c.i] - pack.centre[c.other]).norm();
+        const Tensor<1, 3> &q = load.tangential_force;
+        const double        m = load.torsional_couple;
+        if (c.p0 > 0 && c.k_s > 0)
+          {
+            const bool as_given = std::abs(q * normal) <= 1e-9 * q.norm() &&
+                                  q.norm() <= c.q_max * (1 + 1e-12);
+            c.q0 = as_given ? q : project_and_cap(q, normal, c.q_max);
+          }
+        else
+          c.q0 = Tensor<1, 3>();
+        c.m0 = (c.p0 > 0 && c.k_t > 0) ?
+                 (std::abs(m) <= c.m_max * (1 + 1e-12) ?
+                    m :
+                    std::max(-c.m_max, std::min(c.m_max, m))) :
+                 0.;
+      }
+  }
+
+  std::vector<Contact>
+  ContactNetwork::gather_on_root(const std::vector<Contact> &held,
+                                 const unsigned int          n_grains) const
+  {
+    std::vector<Contact> own;
+    std::copy_if(held.begin(), held.end(), std::back_inserter(own), [&](const Contact &c) {
+      return owns(c);
+    });
+    if (partition.n_ranks() <= 1)
+      return own;
+    std::vector<Contact> all;
+    for (const auto &part : dealii::Utilities::MPI::gather(partition.get_communicator(), own, 0))
+      all.insert(all.end(), part.begin(), part.end());
+    std::sort(all.begin(), all.end(), [n_grains](const Contact &a, const Contact &b) {
+      return a.key(n_grains) < b.key(n_grains);
+    });
+    return all;
   }
 } // namespace sable::qusgm

@@ -25,16 +25,18 @@ namespace sable::qusgm
       {
         m.strain[a] =
           (undeformed_lengths[a] - walls.length(a)) / undeformed_lengths[a];
-        m.stress[a] = 0.5 * (state.wall_force[a] + state.wall_force[a + 3]) /
-                      walls.area(a);
+        const double force = 0.5 * (state.wall_force[a] + state.wall_force[a + 3]);
+        m.stress[a]         = force / walls.area(a);
+        m.nominal_stress[a] = force / (undeformed_lengths[(a + 1) % 3] *
+                                       undeformed_lengths[(a + 2) % 3]);
       }
     m.confining_stress = (m.stress[0] + m.stress[1] + m.stress[2]) / 3.;
     m.deviatoric_stress =
       m.stress[axis] -
       0.5 * (m.stress[(axis + 1) % 3] + m.stress[(axis + 2) % 3]);
     m.n_contacts = state.n_contacts;
-    m.sliding_ratio =
-      state.n_contacts > 0 ? double(state.n_sliding) / state.n_contacts : 0.;
+    m.sliding_ratio = state.n_contacts > 0 ? double(state.n_sliding) / state.n_contacts :
+                                             std::numeric_limits<double>::quiet_NaN();
     double total = 0;
     for (const unsigned int c : state.coordination)
       total += c;
@@ -70,9 +72,11 @@ namespace sable::qusgm
   {
     if (!append)
       out << "increment,stage,strain_x,strain_y,strain_z,stress_x,stress_y,"
-           "stress_z,confining_stress,deviatoric_stress,bulk_modulus,"
-           "shear_modulus,sliding_ratio,coordination_number,solid_fraction,contacts,"
-           "iterations,evaluations,residual,relative_residual,wall_time\n";
+             "stress_z,nominal_stress_x,nominal_stress_y,nominal_stress_z,"
+             "confining_stress,deviatoric_stress,bulk_modulus,"
+             "shear_modulus,sliding_ratio,coordination_number,solid_fraction,contacts,"
+             "iterations,evaluations,residual,relative_residual,wall_time,stopped_by\n";
+    out << std::setprecision(17);
   }
 
   void
@@ -84,19 +88,32 @@ namespace sable::qusgm
                         const IncrementResult  &result,
                         const double            wall_time)
   {
-    out << increment << ',' << stage << std::setprecision(10);
+    // an undefined value is an empty field
+    const auto field = [this](const double value) {
+      out << ',';
+      if (std::isfinite(value))
+        out << value;
+    };
+    out << increment << ',' << stage;
     for (const double e : m.strain)
-      out << ',' << e;
+      field(e);
     for (const double s : m.stress)
-      out << ',' << s;
-    out << ',' << m.confining_stress << ',' << m.deviatoric_stress << ','
-        << bulk_modulus << ',' << shear_modulus << ',' << m.sliding_ratio << ','
-        << m.coordination << ',' << m.solid_fraction << ',' << m.n_contacts << ',' << result.iterations
-        << ',' << result.evaluations << ',' << result.residual << ','
-        << (result.max_contact_force > 0 ?
-              result.residual / result.max_contact_force :
-              0.)
-        << ',' << wall_time << '\n';
+      field(s);
+    for (const double s : m.nominal_stress)
+      field(s);
+    field(m.confining_stress);
+    field(m.deviatoric_stress);
+    field(bulk_modulus);
+    field(shear_modulus);
+    field(m.sliding_ratio);
+    field(m.coordination);
+    field(m.solid_fraction);
+    out << ',' << m.n_contacts << ',' << result.iterations << ',' << result.evaluations;
+    field(result.residual);
+    field(result.max_contact_force > 0 ? result.residual / result.max_contact_force :
+                                         std::numeric_limits<double>::quiet_NaN());
+    field(wall_time);
+    out << ',' << result.stopped_by << '\n';
     out.flush();
   }
 

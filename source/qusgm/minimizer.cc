@@ -3,6 +3,7 @@
 #include <sable/qusgm/minimizer.h>
 
 #include <boost/math/tools/minima.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -172,6 +173,8 @@ namespace sable::qusgm
     std::deque<std::pair<Vector<double>, Vector<double>>> memory;
     unsigned int since_sub_increment = 0;
     double       step                = 0;
+    bool         tracking_progress   = false;
+    double       best_residual = 0, best_value = 0;
 
     if (log)
       *log << "# iteration pi gradient_norm step active_contacts sliding_contacts\n";
@@ -205,6 +208,16 @@ namespace sable::qusgm
         // Stopping tests, once the walls have reached their target.
         if (applied == n_sub)
           {
+            // Progress: a new lowest residual (by 1%) or Pi (beyond round-off).
+            if (!tracking_progress || residual < 0.99 * best_residual ||
+                value < best_value - 1e-12 * std::abs(best_value))
+              {
+                best_residual        = tracking_progress ? std::min(best_residual, residual) :
+                                                           residual;
+                best_value           = tracking_progress ? std::min(best_value, value) : value;
+                tracking_progress    = true;
+                result.last_progress = k;
+              }
             std::string reason;
             if (settings.force_tolerance > 0 &&
                 residual <=
@@ -234,6 +247,13 @@ namespace sable::qusgm
             if (k >= settings.max_iterations)
               {
                 result.stopped_by = "iteration limit";
+                result.iterations = k;
+                break;
+              }
+            if (settings.stagnation_window > 0 &&
+                k >= result.last_progress + settings.stagnation_window)
+              {
+                result.stopped_by = "stagnation";
                 result.iterations = k;
                 break;
               }
@@ -306,8 +326,8 @@ namespace sable::qusgm
             if (!(best.second < value))
               {
                 // Near the minimum Pi is flat to round-off along the line;
-                // find the zero of the directional derivative instead
-                // (regula falsi, Illinois variant) on [0, alpha_max].
+                // find the zero of the directional derivative instead on
+                // [0, alpha_max].
                 alpha = 0;
                 auto dphi = [&](const double a) {
                   trial = theta;
@@ -315,38 +335,31 @@ namespace sable::qusgm
                   functional.value_and_gradient(trial, trial_gradient);
                   return dot(trial_gradient, direction);
                 };
-                double a_lo = 0, d_lo = slope, a_hi = alpha_max,
-                       d_hi = dphi(alpha_max);
+                const double d_hi = dphi(alpha_max);
                 if (d_hi <= 0)
                   alpha = alpha_max;
                 else
                   {
-                    int side = 0;
-                    for (unsigned int it = 0; it < 60; ++it)
-                      {
-                        const double a =
-                          (a_lo * d_hi - a_hi * d_lo) / (d_hi - d_lo);
-                        const double d = dphi(a);
-                        alpha          = a;
-                        if (std::abs(d) < 1e-6 * std::abs(slope))
-                          break;
-                        if (d < 0)
-                          {
-                            a_lo = a;
-                            d_lo = d;
-                            if (side == -1)
-                              d_hi *= 0.5;
-                            side = -1;
-                          }
-                        else
-                          {
-                            a_hi = a;
-                            d_hi = d;
-                            if (side == 1)
-                              d_lo *= 0.5;
-                            side = 1;
-                          }
-                      }
+                    // TOMS 748 on the bracket [0, alpha_max] (slope < 0 <
+                    // d_hi); a derivative below 1e-6 |slope| counts as its
+                    // zero. The answer is the step with the smallest
+                    // |derivative| evaluated.
+                    double best_d = std::numeric_limits<double>::infinity();
+                    auto   root   = [&](const double a) {
+                      const double d = dphi(a);
+                      if (std::abs(d) < best_d)
+                        {
+                          best_d = std::abs(d);
+                          alpha  = a;
+                        }
+                      return std::abs(d) < 1e-6 * std::abs(slope) ? 0. : d;
+                    };
+                    const auto bracket_closed = [](const double a, const double b) {
+                      return b - a <= 4 * std::numeric_limits<double>::epsilon() * b;
+                    };
+                    std::uintmax_t evaluations = 60;
+                    boost::math::tools::toms748_solve(
+                      root, 0., alpha_max, slope, d_hi, bracket_closed, evaluations);
                   }
               }
             if (alpha > 0)

@@ -17,14 +17,25 @@ namespace sable::qusgm
                   const double    r,
                   const double    e,
                   const double    nu,
-                  const double    rho)
+                  const double    rho,
+                  const std::uint64_t grain_id)
   {
+    id.push_back(grain_id == std::uint64_t(-1) ? centre.size() : grain_id);
     centre.push_back(x);
     radius.push_back(r);
     youngs_modulus.push_back(e);
     poisson_ratio.push_back(nu);
     shear_modulus.push_back(e / (2. * (1. + nu)));
     density.push_back(rho);
+  }
+
+  std::string
+  Pack::name(const unsigned int i) const
+  {
+    std::string text = "grain " + std::to_string(i);
+    if (i < id.size() && id[i] != i)
+      text += " (id " + std::to_string(id[i]) + ")";
+    return text;
   }
 
   double
@@ -69,6 +80,7 @@ namespace sable::qusgm
         poisson_ratio[k]     = old.poisson_ratio[i];
         shear_modulus[k]     = old.shear_modulus[i];
         density[k]           = old.density[i];
+        id[k]                = old.id[i];
       }
   }
 
@@ -123,13 +135,14 @@ namespace sable::qusgm
   void
   Pack::check(const std::string &source) const
   {
-    check_input(size() > 0,
+    check_input(size() > 1,
                 source + ": number of grains",
                 size(),
-                "at least one grain");
+                "at least two grains (a pack)");
+    check_input(id.size() == size(), source + ": number of ids", id.size(), "one per grain");
     for (unsigned int i = 0; i < size(); ++i)
       {
-        const std::string grain = source + ": grain " + std::to_string(i);
+        const std::string grain = source + ": " + name(i);
         check_input(std::isfinite(centre[i].norm()),
                     grain + " centre",
                     centre[i],
@@ -146,76 +159,100 @@ namespace sable::qusgm
                     grain + " Poisson's ratio",
                     poisson_ratio[i],
                     "-1 < nu < 0.5");
-        check_input(density[i] >= 0 && std::isfinite(density[i]),
+        check_input(density[i] > 0 && std::isfinite(density[i]),
                     grain + " density",
                     density[i],
-                    "rho >= 0");
+                    "rho > 0");
       }
-  }
-
-  Pack
-  read_pack(const std::string &filename,
-            const double       default_youngs_modulus,
-            const double       default_poisson_ratio,
-            const double       default_density)
-  {
-    std::ifstream in(filename);
-    check_input(static_cast<bool>(in),
-                "Pack file",
-                filename,
-                "an existing, readable CSV file with columns x y z r [E nu rho]");
-    Pack         pack;
-    std::string  line;
-    unsigned int line_number = 0;
-    while (std::getline(in, line))
-      {
-        ++line_number;
-        std::replace(line.begin(), line.end(), ',', ' ');
-        std::replace(line.begin(), line.end(), ';', ' ');
-        const auto first = line.find_first_not_of(" \t\r");
-        if (first == std::string::npos || line[first] == '#')
-          continue;
-        // A header line of column names.
-        if (pack.size() == 0 && std::isalpha(line[first]))
-          continue;
-        std::istringstream  fields(line);
-        std::vector<double> values;
-        std::string         token;
-        bool                numeric = true;
-        while (fields >> token)
-          {
-            char        *end   = nullptr;
-            const double value = std::strtod(token.c_str(), &end);
-            if (end == token.c_str() || *end != '\0')
-              numeric = false;
-            values.push_back(value);
-          }
-        const std::string where =
-          "Pack file " + filename + ", line " + std::to_string(line_number);
-        check_input(numeric && values.size() >= 4 && values.size() <= 7,
-                    where,
-                    line,
-                    "4 to 7 numbers: x y z r [E nu rho]");
-        pack.add_grain(Point<3>(values[0], values[1], values[2]),
-                       values[3],
-                       values.size() > 4 ? values[4] : default_youngs_modulus,
-                       values.size() > 5 ? values[5] : default_poisson_ratio,
-                       values.size() > 6 ? values[6] : default_density);
-      }
-    pack.check("Pack file " + filename);
-    return pack;
+    std::vector<std::uint64_t> sorted = id;
+    std::sort(sorted.begin(), sorted.end());
+    const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
+    check_input(twice == sorted.end(),
+                source + ": grain id",
+                twice == sorted.end() ? 0 : *twice,
+                "each id once");
   }
 
   void
-  write_pack(const Pack &pack, const std::string &filename)
+  check_overlaps(const Pack        &pack,
+                 const Walls       &walls,
+                 const double       max_overlap,
+                 const std::string &source)
   {
-    std::ofstream out(filename);
-    out << "x,y,z,r,E,nu,rho\n" << std::setprecision(17);
-    for (unsigned int i = 0; i < pack.size(); ++i)
-      out << pack.centre[i][0] << ',' << pack.centre[i][1] << ','
-          << pack.centre[i][2] << ',' << pack.radius[i] << ','
-          << pack.youngs_modulus[i] << ',' << pack.poisson_ratio[i] << ','
-          << pack.density[i] << '\n';
+    const unsigned int n = pack.size();
+    if (n == 0)
+      return;
+    // Cell list of cells of one largest diameter over the centres' box.
+    Point<3> lo = pack.centre[0], hi = pack.centre[0];
+    for (const Point<3> &x : pack.centre)
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          lo[a] = std::min(lo[a], x[a]);
+          hi[a] = std::max(hi[a], x[a]);
+        }
+    const double cell = 2. * pack.max_radius();
+    std::array<unsigned int, 3> n_cells;
+    for (unsigned int a = 0; a < 3; ++a)
+      n_cells[a] = static_cast<unsigned int>(
+        std::min(std::max(1., (hi[a] - lo[a]) / cell), std::cbrt(8. * n + 27.)));
+    auto cell_of = [&](const Point<3> &x, const unsigned int a) {
+      const double s = (x[a] - lo[a]) / std::max(hi[a] - lo[a], cell) * n_cells[a];
+      return std::min(n_cells[a] - 1, static_cast<unsigned int>(std::max(0., s)));
+    };
+    const std::size_t total_cells = std::size_t(n_cells[0]) * n_cells[1] * n_cells[2];
+    std::vector<std::vector<unsigned int>> cells(total_cells);
+    for (unsigned int i = 0; i < n; ++i)
+      cells[cell_of(pack.centre[i], 0) +
+            n_cells[0] * (cell_of(pack.centre[i], 1) + n_cells[1] * cell_of(pack.centre[i], 2))]
+        .push_back(i);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Point<3> &x = pack.centre[i];
+        const int       cx = cell_of(x, 0), cy = cell_of(x, 1), cz = cell_of(x, 2);
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+              {
+                const int ix = cx + dx, iy = cy + dy, iz = cz + dz;
+                if (ix < 0 || iy < 0 || iz < 0 || ix >= int(n_cells[0]) ||
+                    iy >= int(n_cells[1]) || iz >= int(n_cells[2]))
+                  continue;
+                for (const unsigned int j : cells[ix + n_cells[0] * (iy + n_cells[1] * iz)])
+                  {
+                    if (j <= i)
+                      continue;
+                    const double d       = (x - pack.centre[j]).norm();
+                    const double overlap = pack.radius[i] + pack.radius[j] - d;
+                    const double smaller = std::min(pack.radius[i], pack.radius[j]);
+                    if (d > 0 && overlap <= max_overlap * smaller)
+                      continue;
+                    const std::string pair = pack.name(i) + " and " + pack.name(j);
+                    check_input(d > 0,
+                                source + ": centres of " + pair,
+                                x,
+                                "distinct centres (the grains coincide)");
+                    std::ostringstream allowed;
+                    allowed << "at most Pack/Maximum initial overlap = " << max_overlap
+                            << " times the smaller radius (" << max_overlap * smaller
+                            << " m)";
+                    check_input(false, source + ": overlap of " + pair, overlap, allowed.str());
+                  }
+              }
+        for (unsigned int w = 0; w < 6; ++w)
+          {
+            const double overlap = walls.overlap(w, x, pack.radius[i]);
+            if (overlap <= max_overlap * pack.radius[i])
+              continue;
+            std::ostringstream allowed;
+            allowed << "at most Pack/Maximum initial overlap = " << max_overlap
+                    << " times the radius (" << max_overlap * pack.radius[i] << " m)";
+            check_input(overlap <= max_overlap * pack.radius[i],
+                        source + ": overlap of " + pack.name(i) + " and wall " +
+                          Walls::name(w),
+                        overlap,
+                        allowed.str());
+          }
+      }
   }
 
   Point<3>
@@ -244,6 +281,13 @@ namespace sable::qusgm
                 "Walls/Poisson's ratio",
                 poisson_ratio,
                 "-1 < nu < 0.5");
+  }
+
+  const char *
+  Walls::name(const unsigned int w)
+  {
+    static const char *names[] = {"x_min", "y_min", "z_min", "x_max", "y_max", "z_max"};
+    return w < 6 ? names[w] : "(no wall)";
   }
 
   Walls

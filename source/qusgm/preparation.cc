@@ -5,14 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
+#include <sstream>
 
 namespace sable::qusgm
 {
   Pack
   generate_loose_pack(const PackGenerationSettings &s, Walls &walls)
   {
-    check_input(s.n_grains > 0, "Pack/Number of grains", s.n_grains, ">= 1");
+    check_input(s.n_grains > 1, "Pack/Number of grains", s.n_grains, ">= 2 (a pack)");
     check_input(s.min_radius > 0, "Pack/Minimum radius", s.min_radius, "> 0");
     check_input(s.max_radius >= s.min_radius,
                 "Pack/Maximum radius",
@@ -97,6 +99,7 @@ namespace sable::qusgm
                     "every grain (try a lower one)");
       }
     pack.sort_spatially();
+    std::iota(pack.id.begin(), pack.id.end(), std::uint64_t(0));
     return pack;
   }
 
@@ -174,6 +177,23 @@ namespace sable::qusgm
     smooth.wall_friction = 0;
     sim.set_model(smooth);
 
+    // An increment of stage (a) that ends unconverged at the iteration
+    // limit leaves a pack out of equilibrium: stop rather than go on.
+    const auto check_converged = [&](const IncrementRecord &record) {
+      if (record.result.stopped_by != "iteration limit")
+        return;
+      std::ostringstream message;
+      message << "preparation could not compact the pack: increment "
+              << sim.n_increments << " (" << (record.macroscopic.n_contacts ? "" : "no contacts, ")
+              << "sigma_c = " << record.macroscopic.confining_stress
+              << " Pa) stopped unconverged at 'Minimizer/Maximum iterations' = "
+              << sim.settings.max_iterations << " (largest residual / contact force "
+              << record.result.residual / std::max(record.result.max_contact_force, 1e-300)
+              << "). Allow more iterations or smaller steps ('Preparation/Compaction "
+                 "strain increment'); increments.csv holds the increments so far";
+      throw PreparationError(message.str());
+    };
+    bool         reached = false;
     bool         jammed = false;
     unsigned int rounds = 0;
     const double target = settings.target_confining_stress;
@@ -188,7 +208,10 @@ namespace sable::qusgm
         const bool growth_done =
           n_below == 0 || rounds >= settings.max_growth_rounds;
         if (growth_done && std::abs(sigma_c - target) <= tolerance * target)
-          break;
+          {
+            reached = true;
+            break;
+          }
 
         if (!jammed && sigma_c > 1e-3 * target)
           {
@@ -201,7 +224,7 @@ namespace sable::qusgm
             ++rounds;
             grow_grains(sim, settings, state);
             sim.radii_changed();
-            sim.step({}, "growth");
+            check_converged(sim.step({}, "growth"));
             continue;
           }
         // Strain step: coarse while loose; once loaded, sized from the last
@@ -222,7 +245,21 @@ namespace sable::qusgm
         std::array<double, 3> lengths;
         for (unsigned int a = 0; a < 3; ++a)
           lengths[a] = sim.walls.length(a);
-        sim.step(LoadPath::wall_moves(d_strain, lengths), "compaction");
+        check_converged(sim.step(LoadPath::wall_moves(d_strain, lengths), "compaction"));
+      }
+    if (!reached)
+      {
+        std::ostringstream message;
+        message << "preparation could not compact the pack: after "
+                << settings.max_compaction_steps
+                << " increments ('Preparation/Maximum compaction increments') sigma_c = "
+                << sim.last.macroscopic.confining_stress << " Pa with "
+                << sim.last.macroscopic.n_contacts
+                << " contacts (none: the walls have not reached the grains), target "
+                << target << " Pa +- 5%. Allow more increments, larger ones "
+                << "('Compaction strain increment') or a lower target; increments.csv "
+                << "holds the increments so far";
+        throw PreparationError(message.str());
       }
 
     // (b) Frictional uniaxial strain until the sliding ratio saturates.
@@ -234,7 +271,8 @@ namespace sable::qusgm
       {
         std::array<double, 3> d_strain{};
         d_strain[sim.axis] = settings.friction_strain;
-        history.push_back(sim.strain_step(d_strain, "activation").macroscopic.sliding_ratio);
+        const double ratio = sim.strain_step(d_strain, "activation").macroscopic.sliding_ratio;
+        history.push_back(std::isfinite(ratio) ? ratio : 0.); // no contacts: none slide
         const unsigned int w = settings.saturation_window;
         if (history.size() > w)
           {

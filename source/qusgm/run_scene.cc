@@ -10,6 +10,7 @@
 #include <sable/base/input_error.h>
 #include <sable/base/common_parameters.h>
 #include <sable/qusgm/load_path.h>
+#include <sable/qusgm/pack_io.h>
 #include <sable/qusgm/preparation.h>
 #include <sable/base/checkpoint_directory.h>
 #include <sable/qusgm/checkpoint.h>
@@ -37,12 +38,26 @@ namespace sable::qusgm
                       "files and the final pack. Empty: output/<scene name>.");
     prm.enter_subsection("Pack");
     {
-      prm.declare_entry("Source", "generate", Patterns::Selection("generate|file"),
+      prm.declare_entry("Source", "generate", Patterns::Selection("generate|file|state"),
                         "generate: a loose random polydisperse pack (then "
-                        "prepare it); file: read grains from 'File'.");
+                        "prepare it); file: read grains from the pack file 'File'; "
+                        "state: continue from a state directory written by sable "
+                        "('File' = e.g. output/<scene>/final_state: grains, walls, "
+                        "box of zero strain and the contacts' tangential loads; "
+                        "needs 'Preparation/Enabled = false' and no 'Walls/Positions').");
       prm.declare_entry("File", "", Patterns::Anything(),
-                        "CSV pack file, one grain per line: x y z r [E nu rho] "
-                        "(SI units). Relative to the parameter file's directory.");
+                        "Pack file (SI units), recognised by its content: columns "
+                        "named by a header line (x, y, z, r|radius|diameter, "
+                        "optional E, nu, rho|density, id; or exactly x y z r without "
+                        "a header), Yade's text export (#format x_y_z_r), or a "
+                        "LAMMPS/LIGGGHTS text dump (ITEM: ATOMS id x y z radius ..., "
+                        "last snapshot). With Source = state, the state directory. "
+                        "Relative to the parameter file's directory.");
+      prm.declare_entry("Maximum initial overlap", "0.1", Patterns::Double(),
+                        "A pack from a file or state is refused, naming the grains, "
+                        "if two grains overlap by more than this fraction of the "
+                        "smaller radius, or a grain and a wall by more than this "
+                        "fraction of its radius (Hertz contacts are small).");
       prm.declare_entry("Number of grains", "500", Patterns::Integer(),
                         "Grains of a generated pack.");
       prm.declare_entry("Minimum radius", "0.07e-3", Patterns::Double(),
@@ -56,7 +71,8 @@ namespace sable::qusgm
                         "mean (normal distribution).");
       prm.declare_entry("Poisson's ratio", "0.2", Patterns::Double(),
                         "Grain Poisson's ratio, -1 < nu < 0.5.");
-      prm.declare_entry("Density", "2420", Patterns::Double(), "[kg/m^3]");
+      prm.declare_entry("Density", "2420", Patterns::Double(),
+                        "[kg/m^3], > 0 (also the default for pack files without it).");
       prm.declare_entry("Initial solid fraction", "0.3", Patterns::Double(),
                         "Solid fraction of the generated loose pack.");
       prm.declare_entry("Random seed", "1", Patterns::Integer(0));
@@ -162,6 +178,12 @@ namespace sable::qusgm
                         "eq. A1); previous increment: the last increment's "
                         "solution, scaled, when the walls repeat its move "
                         "(needs 'Wall sub-increments = 1'; else affine).");
+      prm.declare_entry("Stagnation window", "100", Patterns::Integer(0),
+                        "Stop an increment unconverged ('stagnation' in the console "
+                        "and in increments.csv's stopped_by) when this many iterations "
+                        "bring neither a largest residual 1% below the lowest so far "
+                        "nor a lower Pi (beyond round-off); 0: run to 'Maximum "
+                        "iterations'.");
       prm.declare_entry("Skin", "0.3", Patterns::Double(),
                         "Contact search distance beyond touching, relative to "
                         "the mean radius.");
@@ -262,16 +284,19 @@ namespace sable::qusgm
     generation.density                  = prm.get_double("Density");
     generation.solid_fraction           = prm.get_double("Initial solid fraction");
     generation.seed                     = prm.get_integer("Random seed");
+    const double max_overlap            = prm.get_double("Maximum initial overlap");
     prm.leave_subsection();
+    check_input(max_overlap > 0 && max_overlap < 1, "Pack/Maximum initial overlap",
+                max_overlap, "0 < fraction < 1");
     check_input(generation.poisson_ratio > -1 && generation.poisson_ratio < 0.5,
                 "Pack/Poisson's ratio", generation.poisson_ratio, "-1 < nu < 0.5");
     check_input(generation.youngs_modulus > 0, "Pack/Young's modulus",
                 generation.youngs_modulus, "E > 0");
-    check_input(generation.density >= 0, "Pack/Density", generation.density, ">= 0");
+    check_input(generation.density > 0, "Pack/Density", generation.density, "> 0");
     if (source == "generate")
       {
-        check_input(n_grains_given > 0, "Pack/Number of grains", n_grains_given,
-                    "at least one grain");
+        check_input(n_grains_given > 1, "Pack/Number of grains", n_grains_given,
+                    "at least two grains (a pack)");
         check_input(generation.min_radius > 0, "Pack/Minimum radius",
                     generation.min_radius, "radius > 0");
         check_input(generation.max_radius >= generation.min_radius,
@@ -284,7 +309,8 @@ namespace sable::qusgm
       }
     else
       check_input(!pack_file.empty(), "Pack/File", "(empty)",
-                  "a CSV pack file when Source = file");
+                  source == "file" ? "a pack file when Source = file" :
+                                     "a state directory when Source = state");
 
     PreparationSettings preparation;
     bool                prepare;
@@ -302,6 +328,10 @@ namespace sable::qusgm
     preparation.saturation_window       = prm.get_integer("Saturation window");
     preparation.saturation_tolerance    = prm.get_double("Saturation tolerance");
     prm.leave_subsection();
+    if (source == "state")
+      check_input(!prepare, "Preparation/Enabled (with Pack/Source = state)", "true",
+                  "false: a state continues a prepared pack with its contacts' "
+                  "tangential loads, which a preparation would discard");
     if (prepare)
       {
         check_input(preparation.target_confining_stress > 0,
@@ -349,6 +379,7 @@ namespace sable::qusgm
     settings.line_search_bits             = prm.get_integer("Line search bits");
     settings.lbfgs_history                = prm.get_integer("LBFGS history");
     settings.skin                         = prm.get_double("Skin");
+    settings.stagnation_window            = prm.get_integer("Stagnation window");
     settings.predictor = prm.get("Initial guess") == "previous increment";
     prm.leave_subsection();
     check_input(settings.displacement_cap > 0 && settings.displacement_cap <= 0.1,
@@ -391,11 +422,24 @@ namespace sable::qusgm
       output = "output/" + std::filesystem::path(filename).stem().string();
 
     // The pack (its checks are input checks too).
-    Pack pack;
+    const GrainDefaults defaults{generation.youngs_modulus, generation.poisson_ratio,
+                                 generation.density};
+    Pack                pack;
+    PackState           state;
+    std::string         pack_description;
+    if (source == "state")
+      {
+        check_input(wall_positions.empty(), "Walls/Positions (with Pack/Source = state)",
+                    wall_positions, "empty: the state directory holds the walls");
+        state = read_state(pack_file, defaults);
+        pack  = state.pack;
+        walls.position   = state.walls.position;
+        pack_description = "state directory";
+        walls.check();
+      }
     if (source == "file")
       {
-        pack = read_pack(pack_file, generation.youngs_modulus,
-                         generation.poisson_ratio, generation.density);
+        pack = read_pack(pack_file, defaults, &pack_description);
         const Walls tight = bounding_walls(pack);
         if (wall_positions.empty())
           walls.position = tight.position;
@@ -409,12 +453,18 @@ namespace sable::qusgm
               walls.position[w] = values[w];
           }
         walls.check();
+      }
+    if (source != "generate")
+      {
         for (unsigned int i = 0; i < pack.size(); ++i)
           for (unsigned int a = 0; a < 3; ++a)
             check_input(pack.centre[i][a] > walls.position[a] &&
                           pack.centre[i][a] < walls.position[a + 3],
-                        "Walls/Positions (grain " + std::to_string(i) + " centre)",
+                        "Walls/Positions (" + pack.name(i) + " centre)",
                         pack.centre[i], "every grain centre inside the walls");
+        check_overlaps(pack, walls, max_overlap,
+                       source == "state" ? "State " + pack_file + "/grains.csv" :
+                                           "Pack file " + pack_file);
       }
     else
       {
@@ -442,6 +492,8 @@ namespace sable::qusgm
         << (model.torsion ? "on" : "off") << ", minimiser " << method_name
         << ", " << n_ranks << " MPI rank(s) x " << dealii::MultithreadInfo::n_threads()
         << " thread(s)" << std::endl;
+    if (source != "generate")
+      out << "Pack: " << pack_file << " (" << pack_description << ")" << std::endl;
     // The iteration log evaluates the contact state, which every rank
     // takes part in, so the other ranks log to nowhere.
     std::ofstream log_file;
@@ -451,6 +503,8 @@ namespace sable::qusgm
 
     Simulation sim(pack, walls, model, settings, out, &timer, communicator);
     sim.axis = path.axis;
+    if (source == "state" && !resume)
+      sim.set_pack_state(state);
     RunProgress progress;
     if (resume)
       {
@@ -490,6 +544,13 @@ namespace sable::qusgm
       dealii::DataOutBase::write_pvd_record(contacts_pvd, contact_records);
     };
 
+    // The state to carry on elsewhere (collective; the first rank writes).
+    const auto write_state_files = [&](const std::string &name) {
+      dealii::TimerOutput::Scope scope(timer, "output");
+      const PackState            state_now = sim.pack_state();
+      if (root)
+        write_state(state_now, output + "/" + name);
+    };
     const auto checkpoint_now = [&]() {
       dealii::TimerOutput::Scope scope(timer, "checkpoint");
       save_checkpoint(sim, progress, output, communicator);
@@ -502,12 +563,12 @@ namespace sable::qusgm
             << preparation.min_coordination << " contacts, then friction activation"
             << std::endl;
         prepare_pack(sim, model, preparation);
-        if (root)
-          write_pack(sim.pack, output + "/prepared_pack.csv");
+        write_state_files("prepared_state");
       }
     if (!resume)
       {
-        sim.reset_undeformed();
+        if (source != "state")
+          sim.reset_undeformed();
         if (vtu_all || vtu_increments.count(0))
           write_vtu(0);
         if (checkpoint_interval > 0)
@@ -517,6 +578,7 @@ namespace sable::qusgm
         << " increments of " << path.strain_increment << std::endl;
     for (unsigned int k = progress.load_increments + 1; k <= path.n_increments; ++k)
       {
+        sim.set_progress(k, path.n_increments);
         sim.strain_step(path.strain_increments(), "test");
         if (vtu_all || vtu_increments.count(k) || (vtu_last && k == path.n_increments))
           write_vtu(k);
@@ -524,14 +586,13 @@ namespace sable::qusgm
         if (checkpoint_interval > 0 && k % checkpoint_interval == 0)
           checkpoint_now();
       }
-    if (root)
-      write_pack(sim.pack, output + "/final_pack.csv");
+    write_state_files("final_state");
 
     timer.print_summary();
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out << "Output written to " << output << "/ (increments.csv"
-        << (vtu_records.empty() ? "" : ", grains.pvd, contacts.pvd") << ", final_pack.csv)" << std::endl
+        << (vtu_records.empty() ? "" : ", grains.pvd, contacts.pvd") << ", final_state/)" << std::endl
         << "Total wall time: " << seconds << " s" << std::endl;
   }
 } // namespace sable::qusgm

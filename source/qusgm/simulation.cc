@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace sable::qusgm
 {
@@ -24,6 +25,8 @@ namespace sable::qusgm
   {
     network.set_communicator(communicator);
     reset_undeformed();
+    // The stress the pack starts from, so the first increment has moduli.
+    last.macroscopic = measure(walls, undeformed_lengths, current_state(), pack, axis);
   }
 
   void
@@ -78,6 +81,54 @@ namespace sable::qusgm
     WorkFunctional functional(pack, copy, model);
     functional.set_walls(walls);
     return functional.state(Vector<double>(6 * pack.size()));
+  }
+
+  void
+  Simulation::set_progress(const unsigned int k, const unsigned int n)
+  {
+    if (progress_n != n || k < progress_first || progress_n == 0)
+      {
+        progress_first = k;
+        progress_start = std::chrono::steady_clock::now();
+      }
+    progress_k = k;
+    progress_n = n;
+  }
+
+  PackState
+  Simulation::pack_state() const
+  {
+    PackState state;
+    state.pack               = pack;
+    state.walls              = walls;
+    state.undeformed_lengths = undeformed_lengths;
+    state.wall_force         = current_state().wall_force;
+    const unsigned int n     = pack.size();
+    for (const bool wall : {false, true})
+      for (const Contact &c : network.gather_on_root(wall ? network.wall_contacts : network.pairs, n))
+        if (c.p0 > 0)
+          {
+            ContactLoad load;
+            load.i                = c.i;
+            load.other            = c.other;
+            load.wall             = wall;
+            load.tangential_force = c.q0;
+            load.torsional_couple = c.m0;
+            load.normal_force     = c.p0;
+            load.overlap          = c.h0;
+            state.contacts.push_back(load);
+          }
+    return state;
+  }
+
+  void
+  Simulation::set_pack_state(const PackState &state)
+  {
+    undeformed_lengths = state.undeformed_lengths;
+    last_theta.reinit(0);
+    network.set_reference_loads(pack, walls, model, settings.skin * pack.mean_radius(),
+                                state.contacts);
+    last.macroscopic = measure(walls, undeformed_lengths, current_state(), pack, axis);
   }
 
   const IncrementRecord &
@@ -137,8 +188,8 @@ namespace sable::qusgm
         d_stress[a] = record.macroscopic.stress[a] - stress_before[a];
       }
     const auto moduli    = fit_moduli(d_stress, d_strain);
-    record.bulk_modulus  = have_previous ? moduli.first : std::nan("");
-    record.shear_modulus = have_previous ? moduli.second : std::nan("");
+    record.bulk_modulus  = moduli.first;
+    record.shear_modulus = moduli.second;
     record.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
         .count();
@@ -154,22 +205,48 @@ namespace sable::qusgm
                    record.result,
                    record.wall_time);
 
-    const auto &m = record.macroscopic;
-    out << std::setw(5) << n_increments << ' ' << std::left << std::setw(12)
-        << stage << std::right << std::fixed << std::setprecision(3)
-        << " sigma_c " << std::setw(8) << m.confining_stress * 1e-6 << " MPa"
-        << "  sigma_d " << std::setw(8) << m.deviatoric_stress * 1e-6 << " MPa"
-        << "  K " << std::setw(7) << record.bulk_modulus * 1e-9 << " GPa"
-        << "  G " << std::setw(7) << record.shear_modulus * 1e-9 << " GPa"
-        << "  Z " << std::setprecision(2) << m.coordination << "  sliding "
-        << std::setprecision(3) << m.sliding_ratio << "  it "
-        << record.result.iterations << std::scientific << std::setprecision(1)
-        << "  res/F " << record.result.residual /
-                           std::max(record.result.max_contact_force, 1e-300)
-        << std::fixed << std::setprecision(2) << "  " << record.wall_time
-        << " s" << (record.result.converged ? "" : "  (not converged: " +
-                                                    record.result.stopped_by + ")")
-        << std::defaultfloat << std::endl;
+    // The progress line; an undefined value is shown as "-".
+    const auto &m     = record.macroscopic;
+    const auto  fixed = [](const double value, const int width, const int digits) {
+      std::ostringstream text;
+      text << std::fixed << std::setprecision(digits) << std::setw(width);
+      if (std::isfinite(value))
+        text << value;
+      else
+        text << "-";
+      return text.str();
+    };
+    out << std::setw(5) << n_increments << ' ' << std::left << std::setw(12) << stage
+        << std::right << " sigma_c " << fixed(m.confining_stress * 1e-6, 8, 3) << " MPa"
+        << "  sigma_d " << fixed(m.deviatoric_stress * 1e-6, 8, 3) << " MPa"
+        << "  K " << fixed(record.bulk_modulus * 1e-9, 7, 3) << " GPa"
+        << "  G " << fixed(record.shear_modulus * 1e-9, 7, 3) << " GPa"
+        << "  Z " << fixed(m.coordination, 0, 2) << "  sliding "
+        << fixed(m.sliding_ratio, 0, 3) << "  it " << record.result.iterations
+        << std::scientific << std::setprecision(1) << "  res/F "
+        << record.result.residual / std::max(record.result.max_contact_force, 1e-300)
+        << std::defaultfloat << "  " << fixed(record.wall_time, 0, 2) << " s";
+    if (progress_n > 0 && progress_k >= progress_first)
+      {
+        // Time left from the mean time per increment of the load path so far.
+        const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - progress_start)
+            .count();
+        const double left =
+          elapsed / (progress_k - progress_first + 1) * (progress_n - progress_k);
+        std::ostringstream estimate;
+        if (left < 120)
+          estimate << std::fixed << std::setprecision(0) << left << " s";
+        else if (left < 7200)
+          estimate << std::fixed << std::setprecision(1) << left / 60 << " min";
+        else
+          estimate << std::fixed << std::setprecision(1) << left / 3600 << " h";
+        out << "  [" << progress_k << '/' << progress_n << ", about " << estimate.str()
+            << " left]";
+      }
+    if (!record.result.converged)
+      out << "  (not converged: " << record.result.stopped_by << ")";
+    out << std::endl;
     return last;
   }
 } // namespace sable::qusgm

@@ -67,6 +67,11 @@ namespace
     settings.max_iterations     = 20000;
     settings.sub_increments =
       method == MinimizerSettings::Method::nlcg ? 4 : 1;
+    // CG on the column of six reaches 1e-11 only after a walk of thousands
+    // of iterations at round-off (Pi flat to 12 digits), which the
+    // stagnation stop would end near 5e-8 (see qusgm_failures): this test
+    // is about the equilibrium, so it lets the walk run.
+    settings.stagnation_window = 0;
     ContactNetwork  network;
     IncrementSolver solver(pack, walls, network, model, settings);
 

@@ -6,7 +6,9 @@ ranks (3 cuts the Morton curve into unequal pieces of 50 grains). Every
 column of increments.csv but the wall time must agree to 1e-10 relative to
 the column's largest magnitude (the issue's bound; by construction the runs
 agree bit for bit, because every rank sums per-grain contributions in grain
-order), and the final packs must agree to the same bound.
+order), an undefined value (an empty field) must be undefined on every rank
+count, and the final states (grains, and the contacts with their tangential
+history, gathered from the ranks) must agree to the same bound.
 
 The contact network VTU is written in one piece per rank: the pieces hold
 each loaded contact once, as many as the `contacts` column counts."""
@@ -48,8 +50,9 @@ def table(path):
         return list(csv.DictReader(f))
 
 
-def numbers(row, skip=("stage", "wall_time")):
-    return {k: float(v) for k, v in row.items() if k not in skip}
+def numbers(row, skip=("stage", "wall_time", "stopped_by")):
+    """The numbers of a row; an empty field (undefined) is NaN."""
+    return {k: float(v) if v != "" else float("nan") for k, v in row.items() if k not in skip}
 
 
 def contacts_in(directory, pvd_entry):
@@ -63,7 +66,8 @@ def contacts_in(directory, pvd_entry):
 
 outputs = {ranks: run(ranks) for ranks in (1, 2, 3)}
 reference = table(os.path.join(outputs[1], "increments.csv"))
-reference_pack = table(os.path.join(outputs[1], "final_pack.csv"))
+reference_pack = table(os.path.join(outputs[1], "final_state", "grains.csv"))
+reference_contacts = table(os.path.join(outputs[1], "final_state", "contacts.csv"))
 check("one rank: preparation and load path ran", len(reference) > 20,
       f"{len(reference)} increments")
 for ranks in (2, 3):
@@ -74,30 +78,33 @@ for ranks in (2, 3):
     scales = {}
     for row in reference:
         for k, v in numbers(row).items():
-            if v == v:  # nan (a modulus not yet defined) has no scale
+            if v == v:  # an undefined value has no scale
                 scales[k] = max(scales.get(k, 0.0), abs(v))
     for a, b in zip(reference, rows):
         check_stage = a["stage"] == b["stage"]
         if not check_stage:
             worst, where = float("inf"), f"stage {a['stage']} vs {b['stage']}"
             break
+        other = numbers(b)
         for k, v in numbers(a).items():
-            w = float(b[k])
+            w = other[k]
             if v != v or w != w:
                 if (v != v) != (w != w):
-                    worst, where = float("inf"), f"{k} nan on one side only"
+                    worst, where = float("inf"), f"{k} undefined on one side only"
                 continue
-            error = abs(v - w) / (scales[k] or 1.0)
+            error = abs(v - w) / (scales.get(k) or 1.0)
             if error > worst:
                 worst, where = error, f"{k} at increment {a['increment']}"
     check(f"{ranks} ranks: increments.csv within 1e-10 of one rank", worst <= 1e-10,
           f"largest difference {worst:.2e} {where}")
-    pack = table(os.path.join(outputs[ranks], "final_pack.csv"))
-    pack_scale = {k: max(abs(float(a[k])) for a in reference_pack) or 1.0 for k in reference_pack[0]}
-    worst = max(abs(float(a[k]) - float(b[k])) / pack_scale[k]
-                for a, b in zip(reference_pack, pack) for k in a)
-    check(f"{ranks} ranks: final pack within 1e-10 (per column, of its largest value)",
-          len(pack) == len(reference_pack) and worst <= 1e-10, f"largest difference {worst:.2e}")
+    for name, reference_rows in (("grains", reference_pack), ("contacts", reference_contacts)):
+        rows_here = table(os.path.join(outputs[ranks], "final_state", name + ".csv"))
+        scale = {k: max(abs(float(a[k])) for a in reference_rows) or 1.0 for k in reference_rows[0]}
+        worst = max(abs(float(a[k]) - float(b[k])) / scale[k]
+                    for a, b in zip(reference_rows, rows_here) for k in a)
+        check(f"{ranks} ranks: final state {name} within 1e-10 (per column, of its largest value)",
+              len(rows_here) == len(reference_rows) and worst <= 1e-10,
+              f"{len(rows_here)} rows, largest difference {worst:.2e}")
     # the last increment's contact network, in pieces
     entries = re.findall(r'file="([^"]+)"', open(os.path.join(outputs[ranks], "contacts.pvd")).read())
     n, pieces = contacts_in(outputs[ranks], entries[-1])

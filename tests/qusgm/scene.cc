@@ -8,9 +8,12 @@
 #include <sable/qusgm/macroscopic.h>
 #include <sable/qusgm/run_scene.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <map>
 #include <sstream>
 
 #include "test_support.h"
@@ -113,7 +116,7 @@ main(int argc, char **argv)
 
   write("pack.csv", "x,y,z,r\n0,0,0,1e-4\n3e-4,0,0,0\n");
   expect_error("zero_radius", from_file, "radius");
-  write("pack_nu.csv", "0 0 0 1e-4 70e9 0.5 2420\n");
+  write("pack_nu.csv", "x y z r E nu rho\n0 0 0 1e-4 70e9 0.5 2420\n3e-4 0 0 1e-4 70e9 0.2 2420\n");
   expect_error("poisson_ratio",
                "subsection Pack\n  set Source = file\n  set File = pack_nu.csv\nend\n",
                "Poisson's ratio");
@@ -208,6 +211,71 @@ main(int argc, char **argv)
     check("iteration log written with its header",
           first.find("iteration pi gradient_norm step active_contacts "
                      "sliding_contacts") != std::string::npos);
+  }
+  // The first increment of a pack from a file has moduli: the pair in
+  // equilibrium under load at the start (wall overlaps delta_w, grain
+  // overlap delta_g with equal Hertz forces), then one uniaxial increment
+  // along x; K and G against the chain solution.
+  {
+    const double e_gg = 70e9 / (2 * (1 - 0.04));
+    const double e_gw = 1 / ((1 - 0.04) / 70e9 + (1 - 0.495 * 0.495) / 7e12);
+    const double k_gg = 4. / 3 * e_gg * std::sqrt(0.5e-4);
+    const double k_gw = 4. / 3 * e_gw * std::sqrt(1e-4);
+    const double radius = 1e-4, delta_w = 0.5e-6, d_eps = 1e-3, area = 4e-6;
+    const double delta_g = delta_w * std::pow(k_gw / k_gg, 2. / 3);
+    const double x0 = radius - delta_w, x1 = x0 + 2 * radius - delta_g,
+                 length0 = x1 + radius - delta_w;
+    std::ostringstream pack, walls;
+    pack << std::setprecision(17) << "x y z r\n"
+         << x0 << " 1e-4 1e-4 " << radius << '\n'
+         << x1 << " 1e-4 1e-4 " << radius << '\n';
+    walls << std::setprecision(17) << "0, -1e-3, -1e-3, " << length0 << ", 1e-3, 1e-3";
+    write("pair_preloaded.csv", pack.str());
+    const std::string file = scene(
+      "pair_preloaded",
+      "subsection Pack\n  set Source = file\n  set File = pair_preloaded.csv\nend\n"
+      "subsection Walls\n  set Positions = " + walls.str() + "\nend\n"
+      "subsection Preparation\n  set Enabled = false\nend\n"
+      "subsection Load path\n  set Type = uniaxial strain\n  set Axis = x\n"
+      "  set Number of increments = 1\n  set Strain increment = 1e-3\nend\n"
+      "subsection Minimizer\n  set Method = lbfgs\n  set Force tolerance = 1e-12\n"
+      "  set Energy tolerance = 0\n  set Gradient tolerance = 0\nend\n");
+    sable::qusgm::run_scene(file, MPI_COMM_WORLD);
+    std::ifstream            table(work / "out_pair_preloaded" / "increments.csv");
+    std::string              names, values;
+    std::getline(table, names);
+    std::getline(table, values);
+    std::map<std::string, std::string> row;
+    {
+      std::stringstream n(names), v(values);
+      std::string       name, value;
+      while (std::getline(n, name, ','))
+        {
+          std::getline(v, value, ',');
+          row[name] = value;
+        }
+    }
+    const double sigma0 = k_gw * std::pow(delta_w, 1.5) / area;
+    const double f = std::pow((2 * delta_w + delta_g + d_eps * length0) /
+                                (std::pow(k_gg, -2. / 3) + 2 * std::pow(k_gw, -2. / 3)),
+                              1.5);
+    const double d_sigma = f / area - sigma0;
+    std::cout << "pair_preloaded row: " << values << std::endl;
+    check("first increment: bulk and shear modulus written (not empty)",
+          !row["bulk_modulus"].empty() && !row["shear_modulus"].empty());
+    if (!row["bulk_modulus"].empty() && !row["shear_modulus"].empty())
+      {
+        // uniaxial strain e along x: K = d_sigma_x / (3 e), G = d_sigma_x / (2 e)
+        sable_tests::check_relative("first increment: K from the initial stress",
+                                    std::stod(row["bulk_modulus"]), d_sigma / (3 * d_eps), 1e-10);
+        sable_tests::check_relative("first increment: G from the initial stress",
+                                    std::stod(row["shear_modulus"]), d_sigma / (2 * d_eps), 1e-10);
+      }
+    check("stress over the current and the nominal area agree along the loaded axis "
+          "(its walls keep their area)",
+          row["stress_x"] == row["nominal_stress_x"]);
+    check("sliding ratio written where contacts exist", !row["sliding_ratio"].empty());
+    check("stopped_by names the force test", row["stopped_by"] == "force");
   }
   check("VTU of the last increment written",
         fs::exists(work / "out_pair" / "grains-00003.vtu") &&

@@ -105,7 +105,7 @@ namespace
     Walls walls;
     if (fs::exists(pack_file) && fs::exists(walls_file))
       {
-        pack = read_pack(pack_file, 70e9, 0.2, 2420);
+        pack = read_pack(pack_file, GrainDefaults{70e9, 0.2, 2420});
         pack.sort_spatially();
         std::ifstream in(walls_file);
         for (double &x : walls.position)

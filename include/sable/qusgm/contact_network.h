@@ -6,6 +6,7 @@
 
 #include <sable/qusgm/grain_partition.h>
 #include <sable/qusgm/pack.h>
+#include <sable/qusgm/pack_io.h>
 
 #include <cstdint>
 #include <vector>
@@ -137,6 +138,28 @@ namespace sable::qusgm
     update_reference(const Pack         &pack,
                      const Walls        &walls,
                      const ContactModel &model);
+
+    /**
+     * Give the contacts of @p loads their reference tangential force and
+     * couple, at the reference configuration (@p pack, @p walls). Builds
+     * the network if it is empty. Loads on the contact plane and within
+     * the Coulomb caps are taken as they are (to the last digit); others
+     * are projected onto the plane and capped, like the loads carried from
+     * one increment to the next. Throws InputError (naming the load's file
+     * and line) for a contact whose grains do not overlap. Every rank calls
+     * it with all loads.
+     */
+    void
+    set_reference_loads(const Pack                     &pack,
+                        const Walls                    &walls,
+                        const ContactModel             &model,
+                        double                          skin,
+                        const std::vector<ContactLoad> &loads);
+
+    /// The contacts of all ranks in @p held (pairs or wall_contacts) on
+    /// rank 0, each once, in key order; collective.
+    std::vector<Contact>
+    gather_on_root(const std::vector<Contact> &held, unsigned int n_grains) const;
 
     unsigned int n_builds = 0;
     double       skin     = 0;

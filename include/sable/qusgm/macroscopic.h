@@ -8,6 +8,8 @@
 #include <sable/qusgm/pack.h>
 #include <sable/qusgm/work_functional.h>
 
+#include <boost/serialization/version.hpp>
+
 #include <array>
 #include <fstream>
 #include <string>
@@ -16,25 +18,36 @@
 
 namespace sable::qusgm
 {
+  /**
+   * The pack's state as increments.csv reports it. A quantity that is not
+   * defined (the sliding ratio without contacts) is NaN here and an empty
+   * field in the table.
+   */
   struct MacroscopicState
   {
     std::array<double, 3> strain{}; ///< (L0 - L)/L0, compression positive
-    std::array<double, 3> stress{}; ///< mean wall normal force / area
+    /// mean normal force on the two walls of an axis / their current area
+    std::array<double, 3> stress{};
+    /// the same force / the area of the box at zero strain (L0)
+    std::array<double, 3> nominal_stress{};
     double confining_stress  = 0;   ///< tr(sigma)/3
     double deviatoric_stress = 0;   ///< axial minus mean lateral
-    double sliding_ratio     = 0;
+    double sliding_ratio     = 0;   ///< sliding / closed contacts (NaN: none)
     double coordination      = 0;   ///< mean contacts per grain
     double solid_fraction    = 0;   ///< grain volume / box volume
     unsigned int n_contacts  = 0;
 
     template <class Archive>
     void
-    serialize(Archive &ar, const unsigned int)
+    serialize(Archive &ar, const unsigned int version)
     {
       for (unsigned int a = 0; a < 3; ++a)
         ar &strain[a] &stress[a];
       ar &confining_stress &deviatoric_stress &sliding_ratio &coordination &solid_fraction
         &n_contacts;
+      if (version >= 1)
+        for (unsigned int a = 0; a < 3; ++a)
+          ar &nominal_stress[a];
     }
   };
 
@@ -49,13 +62,17 @@ namespace sable::qusgm
    * Fit isotropic Hooke's law d_sigma_l = K tr(d_eps) + 2 G dev(d_eps)_l to
    * one stress-strain interval (least squares; the two columns are
    * orthogonal). Returns NaN for a modulus the interval does not determine
-   * (G under isotropic strain).
+   * (G under isotropic strain, both without strain); increments.csv writes
+   * it as an empty field.
    */
   std::pair<double, double>
   fit_moduli(const std::array<double, 3> &d_stress,
              const std::array<double, 3> &d_strain);
 
-  /// The increments.csv table.
+  /**
+   * The increments.csv table: every number with 17 significant digits, an
+   * undefined value (NaN) as an empty field.
+   */
   class IncrementTable
   {
   public:
@@ -99,5 +116,8 @@ namespace sable::qusgm
                      const ContactNetwork &network,
                      const ContactModel   &model);
 } // namespace sable::qusgm
+
+// Version 1 added the nominal stress.
+BOOST_CLASS_VERSION(sable::qusgm::MacroscopicState, 1)
 
 #endif

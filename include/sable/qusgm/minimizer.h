@@ -40,6 +40,11 @@ namespace sable::qusgm
     /// Start from the previous increment's solution, scaled, when the walls
     /// repeat its move (else, and with sub-increments, the affine guess).
     bool predictor = false;
+    /// Stop, unconverged ("stagnation"), when this many iterations after the
+    /// last wall sub-increment brought no progress: neither a largest
+    /// residual below 0.99 times the lowest so far nor a Pi below the lowest
+    /// so far by 1e-12 |Pi| (0: never).
+    unsigned int stagnation_window = 100;
   };
 
   struct IncrementResult
@@ -52,7 +57,12 @@ namespace sable::qusgm
     double       residual      = 0; ///< max |F_i|, |M_i|/R_i
     double       max_contact_force = 0;
     bool         converged         = false;
+    /// the test that stopped the minimiser: force, increment force,
+    /// gradient, energy, zero gradient (converged); iteration limit,
+    /// stagnation, line search stalled (not converged)
     std::string  stopped_by;
+    /// the last iteration that made progress (see stagnation_window)
+    unsigned int last_progress = 0;
   };
 
   /**

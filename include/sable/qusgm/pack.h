@@ -4,7 +4,11 @@
 
 #include <deal.II/base/point.h>
 
+#include <boost/serialization/version.hpp>
+
 #include <array>
+#include <cstdint>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -15,22 +19,33 @@ namespace sable::qusgm
 
   /**
    * Grain data as one array per quantity. `centre` is the reference
-   * configuration: the last equilibrium reached.
+   * configuration: the last equilibrium reached. `id` is the grain's name
+   * in the files it came from and goes to (the `id` column of a pack file,
+   * a LAMMPS atom id; else its position in the file, from 0): output that
+   * names grains uses it.
    */
   struct Pack
   {
-    std::vector<Point<3>> centre;
-    std::vector<double>   radius;
-    std::vector<double>   youngs_modulus;
-    std::vector<double>   poisson_ratio;
-    std::vector<double>   shear_modulus;
-    std::vector<double>   density;
+    std::vector<Point<3>>      centre;
+    std::vector<double>        radius;
+    std::vector<double>        youngs_modulus;
+    std::vector<double>        poisson_ratio;
+    std::vector<double>        shear_modulus;
+    std::vector<double>        density;
+    std::vector<std::uint64_t> id;
 
     template <class Archive>
     void
-    serialize(Archive &ar, const unsigned int)
+    serialize(Archive &ar, const unsigned int version)
     {
       ar &centre &radius &youngs_modulus &poisson_ratio &shear_modulus &density;
+      if (version >= 1)
+        ar &id;
+      else
+        {
+          id.resize(centre.size());
+          std::iota(id.begin(), id.end(), std::uint64_t(0));
+        }
     }
 
     unsigned int
@@ -39,12 +54,18 @@ namespace sable::qusgm
       return centre.size();
     }
 
+    /// Add a grain; its id is @p grain_id, or its index if none is given.
     void
     add_grain(const Point<3> &x,
               double          r,
               double          e,
               double          nu,
-              double          rho);
+              double          rho,
+              std::uint64_t   grain_id = std::uint64_t(-1));
+
+    /// "grain 12" or, when the id differs from the index, "grain 12 (id 57)".
+    std::string
+    name(unsigned int i) const;
 
     double
     mass(const unsigned int i) const;
@@ -74,24 +95,14 @@ namespace sable::qusgm
     std::vector<unsigned int>
     spatial_order() const;
 
-    /// Throw InputError (naming @p source) unless every grain is valid.
+    /**
+     * Throw InputError (naming @p source) unless the pack has at least two
+     * grains, each with a finite centre, radius > 0, E > 0,
+     * -1 < nu < 0.5 and density > 0, and the ids are distinct.
+     */
     void
     check(const std::string &source) const;
   };
-
-  /**
-   * Read a pack from a CSV file, one grain per line: x y z r [E nu rho]
-   * (separated by commas or blanks; lines starting with # and a header line
-   * of names are skipped). Missing material columns take the defaults.
-   */
-  Pack
-  read_pack(const std::string &filename,
-            double             default_youngs_modulus,
-            double             default_poisson_ratio,
-            double             default_density);
-
-  void
-  write_pack(const Pack &pack, const std::string &filename);
 
   /**
    * Six planar elastic walls aligned with the axes. Wall w < 3 is the lower
@@ -163,11 +174,30 @@ namespace sable::qusgm
     /// Throw InputError unless the walls enclose a box of positive size.
     void
     check() const;
+
+    /// "x_min", "y_min", "z_min", "x_max", "y_max", "z_max" for w = 0..5.
+    static const char *
+    name(unsigned int w);
   };
+
+  /**
+   * Throw InputError (naming @p source and the grains) if two grains
+   * coincide, or a grain overlaps another grain by more than
+   * @p max_overlap times the smaller radius, or a wall by more than
+   * @p max_overlap times its radius. A cell list: O(N).
+   */
+  void
+  check_overlaps(const Pack        &pack,
+                 const Walls       &walls,
+                 double             max_overlap,
+                 const std::string &source);
 
   /// The tightest box of walls around the pack (grains just touching).
   Walls
   bounding_walls(const Pack &pack);
 } // namespace sable::qusgm
+
+// Version 1 added the grain ids (version 0: ids are the indices).
+BOOST_CLASS_VERSION(sable::qusgm::Pack, 1)
 
 #endif

@@ -5,8 +5,18 @@
 #include <sable/qusgm/pack.h>
 #include <sable/qusgm/simulation.h>
 
+#include <stdexcept>
+
 namespace sable::qusgm
 {
+  /// Preparation could not compact the pack: the message says why and
+  /// what to change; the increments so far are in the table.
+  class PreparationError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
   struct PackGenerationSettings
   {
     unsigned int n_grains        = 500;
@@ -54,6 +64,11 @@ namespace sable::qusgm
    * apply uniaxial strain until the sliding ratio changes by less than the
    * tolerance over the window. Records stages "compaction", "growth" and
    * "activation" in the simulation's table.
+   *
+   * Throws PreparationError if a compaction or growth increment stops at
+   * the minimiser's iteration limit, or if stage (a) does not reach the
+   * target within max_compaction_steps (e.g. a pack without contacts),
+   * instead of handing a pack that is not compacted to the load path.
    */
   void
   prepare_pack(Simulation                &simulation,

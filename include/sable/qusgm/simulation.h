@@ -12,7 +12,10 @@
 #include <sable/qusgm/minimizer.h>
 #include <sable/qusgm/pack.h>
 
+#include <sable/qusgm/pack_io.h>
+
 #include <array>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -21,6 +24,8 @@ namespace sable::qusgm
   struct IncrementRecord
   {
     MacroscopicState macroscopic;
+    /// Hooke fit of this increment's stress and strain changes (NaN where
+    /// undefined, see fit_moduli())
     double           bulk_modulus  = 0;
     double           shear_modulus = 0;
     IncrementResult  result;
@@ -35,6 +40,9 @@ namespace sable::qusgm
      * distributed over its ranks (see GrainPartition); every rank then
      * calls every member function, in the same order. Only the caller
      * decides which rank writes the table and the logs.
+     *
+     * The stress of the configuration given is measured at once, so that
+     * the first increment has moduli (its stress change is from there).
      */
     Simulation(const Pack              &pack,
                const Walls             &walls,
@@ -70,6 +78,30 @@ namespace sable::qusgm
     /// Continue from the bytes of save_state() (on every rank).
     void
     load_state(const std::string &bytes);
+
+    /**
+     * The state for files (write_state()): grains, walls, the box of zero
+     * strain, the wall forces, and every closed contact with its reference
+     * loads. Collective; the contacts are complete on rank 0 only.
+     */
+    PackState
+    pack_state() const;
+
+    /**
+     * Continue from a state read from files: the box of zero strain and
+     * the contacts' reference loads of @p state (whose pack and walls this
+     * simulation was made with). See ContactNetwork::set_reference_loads().
+     */
+    void
+    set_pack_state(const PackState &state);
+
+    /**
+     * Increment @p k of @p n of the load path comes next: the progress line
+     * shows "k/n" and an estimate of the time left (from the mean time of
+     * the increments since the first call).
+     */
+    void
+    set_progress(unsigned int k, unsigned int n);
 
     /// Apply wall moves, reach equilibrium, record, print a progress line.
     const IncrementRecord &
@@ -108,10 +140,13 @@ namespace sable::qusgm
     dealii::ConditionalOStream      &out;
     dealii::TimerOutput             *timer;
     std::shared_ptr<IncrementTable>  table; // shared by copies
-    bool                             have_previous = false;
+    bool                             have_previous = false; // kept for old checkpoints
     // The last increment's solution and wall moves, for the predictor.
     Vector<double>                   last_theta;
     std::array<double, 6>            last_moves{};
+    // Progress through the load path for the console.
+    unsigned int                          progress_k = 0, progress_n = 0, progress_first = 0;
+    std::chrono::steady_clock::time_point progress_start;
   };
 } // namespace sable::qusgm
 
