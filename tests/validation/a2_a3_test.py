@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Validation scenes A2 and A3 in small (paper 002, Figs. 3-8): an elastic
 sphere on an elastic plane body, 3D, Bardenhagen-2001 contact with Coulomb
 friction between the sphere's group (0) and the plane's group (1), cells R/4,
