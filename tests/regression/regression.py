@@ -5,6 +5,8 @@ reference files committed next to it, through numdiff.
     regression.py <name> [--ranks N]      run tests/regression/<name>/scene.prm
                                           and compare
     regression.py <name> --regenerate     run it and overwrite the references
+                                          (a file in which only the wall
+                                          time would change is kept)
 
 The scene runs with `--set "Output directory=<scratch>"`; every reference
 file in tests/regression/<name>/ (statistics.csv for MPM, increments.csv
@@ -102,6 +104,14 @@ def numdiff_arguments(reference):
     return arguments
 
 
+def without_wall_time(path):
+    """The rows of a CSV file without its wall-clock columns."""
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    keep = [i for i, title in enumerate(rows[0]) if "wall_time" not in title] if rows else []
+    return [[row[i] for i in keep if i < len(row)] for row in rows]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("name", help="a directory of tests/regression with a scene.prm")
@@ -117,8 +127,14 @@ def main():
 
     if options.regenerate:
         for f in written:
-            shutil.copyfile(os.path.join(output, f), os.path.join(directory, f))
-            print(f"wrote {os.path.join(directory, f)}")
+            reference = os.path.join(directory, f)
+            if os.path.exists(reference) and \
+                    without_wall_time(reference) == without_wall_time(os.path.join(output, f)):
+                # keep the file: only the wall time would change
+                print(f"unchanged {reference}")
+                continue
+            shutil.copyfile(os.path.join(output, f), reference)
+            print(f"wrote {reference}")
         for f in set(references) - set(written):
             os.remove(os.path.join(directory, f))
             print(f"removed {os.path.join(directory, f)} (no longer written)")
