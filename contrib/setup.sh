@@ -4,7 +4,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-packages=(libdeal.ii-dev cmake g++ make numdiff ccache openmpi-bin python3 python3-matplotlib hdf5-tools)
+packages=(libdeal.ii-dev cmake g++ make numdiff ccache openmpi-bin python3 python3-matplotlib python3-numpy python3-meshio python3-h5py)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -5,6 +5,7 @@
 
 #include <sable/base/common_parameters.h>
 #include <sable/base/input_error.h>
+#include <sable/base/parameter_settings.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/run_scene.h>
 #include <sable/qusgm/run_scene.h>
@@ -12,13 +13,15 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: sable [--threads N] <scene.prm> [--resume]\n"
+    out << "Usage: sable [--threads N] [--set \"Subsection/Entry=value\"]... <scene.prm>\n"
+           "             [--resume]\n"
            "       sable --print-parameters [mpm|qusgm] [2|3]\n"
            "       sable --help\n\n"
            "Runs the granular-mechanics scene described by the parameter file.\n"
@@ -33,7 +36,16 @@ namespace
            "statistics.csv is continued as if the run had not stopped.\n"
            "--threads N runs N threads per MPI rank (0: one per core);\n"
            "it overrides the environment variable SABLE_THREADS and the\n"
-           "scene's 'set Threads' (default 1).\n";
+           "scene's 'set Threads' (default 1).\n"
+           "--set \"Subsection/.../Entry=value\" (or --set=...; repeatable)\n"
+           "gives an entry of the scene a new value after the file is read,\n"
+           "as if the file said 'set Entry = value' in that subsection;\n"
+           "a top-level entry is just \"Entry=value\" (also Model and\n"
+           "Dimension). The names are those of --print-parameters; an\n"
+           "unknown entry or a value outside the entry's pattern stops the\n"
+           "program before any work. Example, the first 20 steps of a scene:\n"
+           "  sable prm/quick_demo.prm --set \"Time/Maximum number of steps=20\"\n"
+           "        --set \"Output directory=output/short\"\n";
   }
 
   void
@@ -61,8 +73,10 @@ main(int argc, char **argv)
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
-      // --threads N (or --threads=N) anywhere; taken out of argv
-      std::string threads_option;
+      // --threads N (or --threads=N) and --set S (or --set=S) anywhere;
+      // taken out of argv
+      std::string              threads_option;
+      std::vector<std::string> set_options;
       if (const char *environment = std::getenv("SABLE_THREADS"))
         threads_option = environment;
       for (int i = 1; i < argc; ++i)
@@ -80,6 +94,18 @@ main(int argc, char **argv)
             {
               threads_option = argument.substr(10);
               taken          = 1;
+            }
+          else if (argument == "--set")
+            {
+              sable::check_input(i + 1 < argc, "--set", "(missing)",
+                                 "\"Subsection/.../Entry=value\"");
+              set_options.push_back(argv[i + 1]);
+              taken = 2;
+            }
+          else if (argument.rfind("--set=", 0) == 0)
+            {
+              set_options.push_back(argument.substr(6));
+              taken = 1;
             }
           if (taken > 0)
             {
@@ -105,6 +131,10 @@ main(int argc, char **argv)
                              "--threads (or SABLE_THREADS)", threads_option,
                              "an integer >= 0 (0: one thread per core)");
         }
+
+      std::vector<sable::ParameterSetting> settings;
+      for (const std::string &option : set_options)
+        settings.push_back(sable::parse_parameter_setting(option));
 
       if (argc < 2)
         {
@@ -139,16 +169,16 @@ main(int argc, char **argv)
         }
 
       const sable::CommonParameters common =
-        sable::read_common_parameters(first);
+        sable::read_common_parameters(first, settings);
       sable::set_threads(threads >= 0 ? threads : common.threads);
       if (common.model == sable::Model::qusgm)
         {
-          sable::qusgm::run_scene(first, MPI_COMM_WORLD, resume);
+          sable::qusgm::run_scene(first, MPI_COMM_WORLD, resume, settings);
         }
       else if (common.dimension == 3)
-        sable::mpm::run_scene<3>(first, MPI_COMM_WORLD, resume);
+        sable::mpm::run_scene<3>(first, MPI_COMM_WORLD, resume, settings);
       else
-        sable::mpm::run_scene<2>(first, MPI_COMM_WORLD, resume);
+        sable::mpm::run_scene<2>(first, MPI_COMM_WORLD, resume, settings);
     }
   catch (const sable::InputError &error)
     {

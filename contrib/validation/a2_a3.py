@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Validation scenes A2 and A3 (Bardenhagen, Guilkey, Roessig, Brackbill,
 Witzel, Foster 2001, Figs. 3-8): an elastic sphere on an elastic plane, 3D,
 with Bardenhagen-2001 frictional contact between the two bodies.
@@ -19,19 +19,21 @@ Output: doc/validation/a2_a3_table.md and doc/validation/a2_a3.png.
 Usage: contrib/validation/a2_a3.py [--sable build/sable] [--work DIR]
            [--end-time T] [--resolutions 2,4,8] [--cases a2_noslip,...]
            [--output-dir doc/validation]
-The other resolutions change only `Grid/Subdivisions`, the output directory
-and (for the spin) the particle output interval of the scene files."""
+The scene files run as they are, with `--set` for `Grid/Subdivisions`, the
+output directory, the end time and (for the spin) the particle output
+interval. Particle files are read with meshio (Debian's /usr/bin/python3
+with python3-meshio, and python3-matplotlib for the plot)."""
 import argparse
-import base64
 import csv
 import glob
 import math
 import os
 import re
-import struct
 import subprocess
 import sys
-import zlib
+
+import meshio
+import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 G = 10.0
@@ -67,21 +69,18 @@ CASES = [
 ]
 
 
-def variant(text, cells, output_directory, end_time, output_interval):
-    """The scene text with Subdivisions = cells, another output directory,
-    end time and particle output interval."""
-    text, n = re.subn(r"(?m)^(\s*set Subdivisions\s*=).*$",
-                      r"\g<1> " + ", ".join(str(c) for c in cells), text)
-    assert n == 1, "Subdivisions not found"
-    text, n = re.subn(r"(?m)^(\s*set Output directory\s*=).*$", rf"\g<1> {output_directory}", text)
-    assert n == 1, "Output directory not found"
+def settings(cells, output_directory, end_time, output_interval):
+    """The --set options for another resolution, output directory, end
+    time and particle output interval of a scene file."""
+    values = {"Grid/Subdivisions": ", ".join(str(c) for c in cells),
+              "Output directory": output_directory,
+              "Output/Particle output interval": output_interval}
     if end_time is not None:
-        text, n = re.subn(r"(?m)^(\s*set End time\s*=)[^#\n]*", rf"\g<1> {end_time}", text)
-        assert n == 1, "End time not found"
-    text, n = re.subn(r"(?m)^(subsection Output\s*)$",
-                      rf"\g<1>\n  set Particle output interval = {output_interval}", text)
-    assert n == 1, "subsection Output not found"
-    return text
+        values["Time/End time"] = end_time
+    arguments = []
+    for entry, value in values.items():
+        arguments += ["--set", f"{entry}={value}"]
+    return arguments
 
 
 def read_csv(path):
@@ -89,51 +88,24 @@ def read_csv(path):
         return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
 
 
-def vtu_arrays(path, names):
-    """Float32 arrays of a deal.II particle .vtu (zlib-compressed, base64)."""
-    text = open(path).read()
-    arrays = {}
-    for match in re.finditer(r'<DataArray type="Float32"(?: Name="(\w+)")?(?: NumberOfComponents="(\d+)")?'
-                             r'[^>]*>\s*([^<]*)<', text):
-        name = match.group(1) or "points"
-        if name not in names:
-            continue
-        data = match.group(3).strip()
-        n_blocks = struct.unpack("<I", base64.b64decode(data[:8])[:4])[0]
-        header_chars = (4 * (3 + n_blocks) + 2) // 3 * 4
-        sizes = struct.unpack(f"<{3 + n_blocks}I", base64.b64decode(data[:header_chars]))[3:]
-        compressed, raw, offset = base64.b64decode(data[header_chars:]), b"", 0
-        for size in sizes:
-            raw += zlib.decompress(compressed[offset:offset + size])
-            offset += size
-        values = struct.unpack(f"<{len(raw) // 4}f", raw)
-        n = int(match.group(2) or 1)
-        arrays[name] = [values[i:i + n] for i in range(0, len(values), n)]
-    return arrays
-
-
 def sphere_state(directory):
     """From the last particle file: the sphere's (body 0) spin about z,
     omega_z = L_z / I_z about its centre of mass, its centre velocity, the
     lowest sphere point and the highest plane (body 1) point."""
     last = sorted(glob.glob(os.path.join(directory, "particles_*.pvtu")))[-1]
-    arrays = {}
-    for path in sorted(glob.glob(last[:-len(".pvtu")] + ".*.vtu")):
-        for k, v in vtu_arrays(path, ("points", "velocity", "mass", "body")).items():
-            arrays.setdefault(k, []).extend(v)
-    sphere = [i for i, b in enumerate(arrays["body"]) if b[0] == 0]
-    plane = [i for i, b in enumerate(arrays["body"]) if b[0] == 1]
-    m = [arrays["mass"][i][0] for i in sphere]
-    p = [arrays["points"][i] for i in sphere]
-    u = [arrays["velocity"][i] for i in sphere]
-    total = sum(m)
-    c = [sum(mi * q[d] for mi, q in zip(m, p)) / total for d in range(3)]
-    v = [sum(mi * w[d] for mi, w in zip(m, u)) / total for d in range(3)]
-    L = sum(mi * ((q[0] - c[0]) * (w[1] - v[1]) - (q[1] - c[1]) * (w[0] - v[0]))
-            for mi, q, w in zip(m, p, u))
-    inertia = sum(mi * ((q[0] - c[0]) ** 2 + (q[1] - c[1]) ** 2) for mi, q in zip(m, p))
-    return dict(omega=L / inertia, vx=v[0], sphere_min_y=min(q[1] for q in p),
-                plane_max_y=max(arrays["points"][i][1] for i in plane))
+    # the pieces of the last .pvtu, one .vtu per rank
+    pieces = [meshio.read(path) for path in sorted(glob.glob(last[:-len(".pvtu")] + ".*.vtu"))]
+    points = np.concatenate([piece.points for piece in pieces]).astype(float)
+    velocity, mass, body = (np.concatenate([piece.point_data[name] for piece in pieces]).astype(float)
+                            for name in ("velocity", "mass", "body"))
+    sphere, plane = body == 0, body == 1
+    m, p, u = mass[sphere], points[sphere], velocity[sphere]
+    c = m @ p / m.sum()
+    v = m @ u / m.sum()
+    L = np.sum(m * ((p[:, 0] - c[0]) * (u[:, 1] - v[1]) - (p[:, 1] - c[1]) * (u[:, 0] - v[0])))
+    inertia = np.sum(m * ((p[:, 0] - c[0]) ** 2 + (p[:, 1] - c[1]) ** 2))
+    return dict(omega=float(L / inertia), vx=float(v[0]), sphere_min_y=float(p[:, 1].min()),
+                plane_max_y=float(points[plane, 1].max()))
 
 
 def run(sable, name, radius, size, per_radius, work, end_time):
@@ -142,13 +114,12 @@ def run(sable, name, radius, size, per_radius, work, end_time):
     cells = [round(length / h) for length in size]
     tag = f"{name}_r{per_radius}"
     os.makedirs(work, exist_ok=True)
-    with open(os.path.join(ROOT, "prm", name + ".prm")) as f:
+    scene = os.path.join(ROOT, "prm", name + ".prm")
+    with open(scene) as f:
         text = f.read()
     T = end_time if end_time is not None else float(re.search(r"(?m)^\s*set End time\s*=\s*([^#\s]+)", text).group(1))
-    scene = os.path.join(work, tag + ".prm")
-    with open(scene, "w") as f:
-        f.write(variant(text, cells, tag, end_time, T))
-    result = subprocess.run([sable, os.path.basename(scene)], cwd=work, capture_output=True, text=True)
+    result = subprocess.run([sable, scene] + settings(cells, tag, end_time, T), cwd=work,
+                            capture_output=True, text=True)
     output = result.stdout + result.stderr
     if result.returncode != 0:
         sys.stderr.write(output)

@@ -53,7 +53,8 @@ namespace sable
   }
 
   CommonParameters
-  read_common_parameters(const std::string &filename)
+  read_common_parameters(const std::string &                  filename,
+                         const std::vector<ParameterSetting> &settings)
   {
     {
       std::ifstream file(filename);
@@ -64,6 +65,7 @@ namespace sable
     dealii::ParameterHandler prm;
     declare_common_parameters(prm);
     prm.parse_input(filename, "", /*skip_undefined=*/true);
+    apply_parameter_settings(prm, settings, /*skip_undeclared=*/true);
     CommonParameters common;
     common.model = prm.get("Model") == "qusgm" ? Model::qusgm : Model::mpm;
     common.dimension = prm.get_integer("Dimension");

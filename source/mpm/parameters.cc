@@ -214,7 +214,7 @@ namespace sable::mpm
 
   template <int dim>
   Scene<dim>
-  read_scene(const std::string &filename)
+  read_scene(const std::string &filename, const std::vector<ParameterSetting> &settings)
   {
     unsigned int n_bodies = 0;
     {
@@ -222,12 +222,14 @@ namespace sable::mpm
       declare_common_parameters(prm);
       declare_parameters<dim>(prm, 0);
       prm.parse_input(filename, "", /*skip_undefined=*/true);
+      apply_parameter_settings(prm, settings, /*skip_undeclared=*/true);
       n_bodies = prm.get_integer("Number of bodies");
     }
     ParameterHandler prm;
     declare_common_parameters(prm);
     declare_parameters<dim>(prm, n_bodies);
     prm.parse_input(filename);
+    apply_parameter_settings(prm, settings);
 
     Scene<dim>                scene;
     SimulatorParameters<dim> &p = scene.simulator;
@@ -324,7 +326,8 @@ namespace sable::mpm
 #define SABLE_INSTANTIATE(dim)                                                  \
   template void declare_parameters<dim>(ParameterHandler &, unsigned int);     \
   template void check_parameters<dim>(const SimulatorParameters<dim> &);       \
-  template Scene<dim> read_scene<dim>(const std::string &);
+  template Scene<dim> read_scene<dim>(const std::string &,                     \
+                                      const std::vector<ParameterSetting> &);
   SABLE_INSTANTIATE(2)
   SABLE_INSTANTIATE(3)
 #undef SABLE_INSTANTIATE

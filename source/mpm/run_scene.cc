@@ -43,9 +43,12 @@ namespace sable::mpm
 
   template <int dim>
   void
-  run_scene(const std::string &filename, MPI_Comm communicator, const bool resume)
+  run_scene(const std::string &                  filename,
+            MPI_Comm                             communicator,
+            const bool                           resume,
+            const std::vector<ParameterSetting> &settings)
   {
-    const Scene<dim> scene = read_scene<dim>(filename);
+    const Scene<dim> scene = read_scene<dim>(filename, settings);
     // the checkpoint to resume from, before any work
     const std::string checkpoint =
       resume ? find_checkpoint(scene.simulator.output_directory, communicator, std::cout) : "";
@@ -72,6 +75,8 @@ namespace sable::mpm
   make_grid<2>(const GridParameters<2> &, parallel::distributed::Triangulation<2> &, bool);
   template unsigned int
   make_grid<3>(const GridParameters<3> &, parallel::distributed::Triangulation<3> &, bool);
-  template void run_scene<2>(const std::string &, MPI_Comm, bool);
-  template void run_scene<3>(const std::string &, MPI_Comm, bool);
+  template void
+  run_scene<2>(const std::string &, MPI_Comm, bool, const std::vector<ParameterSetting> &);
+  template void
+  run_scene<3>(const std::string &, MPI_Comm, bool, const std::vector<ParameterSetting> &);
 } // namespace sable::mpm

@@ -222,7 +222,10 @@ namespace sable::qusgm
   } // namespace
 
   void
-  run_scene(const std::string &filename, MPI_Comm communicator, const bool resume)
+  run_scene(const std::string &                  filename,
+            MPI_Comm                             communicator,
+            const bool                           resume,
+            const std::vector<ParameterSetting> &parameter_settings)
   {
     const auto start = std::chrono::steady_clock::now();
     const bool root  = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
@@ -242,6 +245,7 @@ namespace sable::qusgm
         throw InputError("cannot use the parameter file '" + filename +
                          "': " + message.str());
       }
+    apply_parameter_settings(prm, parameter_settings);
 
     // --- Read and check everything before any work or output.
     ContactModel model;

@@ -2,7 +2,7 @@
 """HDF5 + XDMF particle output (Output format = hdf5) on 1 and 2 ranks: an
 elastic box 0.4 m x 0.3 m (density 1000, 2x2 points in each 0.05 m cell,
 192 points of 0.625 kg) falling freely. Each particles_NNNNN.h5, read back
-with h5dump (Debian package hdf5-tools), holds as many points as the
+with h5py (Debian package python3-h5py), holds as many points as the
 `particles` column of statistics.csv at that output step, with the ids
 0..191; their masses sum to the body's 120 kg and every point's velocity is
 (0, g t), t the time of that row (a stress-free body in free fall gains
@@ -34,29 +34,26 @@ vertices that are not hanging, the nodal mass is the points' total mass
 masters), to 1.2e-7; every node with mass, hanging ones included
 (momentum and mass are interpolated, then divided), has v = (0, g t).
 The VTU variant (2 ranks): grid.pvd lists grid_NNNNN.pvtu files whose
-pieces exist and hold 400 cells together."""
-import os
-import re
-import shutil
-import subprocess
-from scene_test import *
+pieces exist and hold 400 cells together (read with meshio).
 
-if not shutil.which("h5dump"):
-    raise SystemExit("[FAIL] h5dump not found: install the Debian package hdf5-tools (contrib/setup.sh does)")
+Run with Debian's /usr/bin/python3 (python3-h5py, python3-meshio)."""
+import os
+import subprocess
+import xml.etree.ElementTree as ET
+
+import h5py
+import meshio
+
+from scene_test import *
 
 
 def read_dataset(h5, name):
-    """The rows of dataset `name` in file `h5`, all digits, through h5dump."""
-    text_file = h5 + "." + name + ".txt"
-    subprocess.run(["h5dump", "-d", "/" + name, "-m", "%.17g", "-y", "-w", "0", "-o", text_file, h5],
-                   check=True, capture_output=True)
-    with open(text_file) as f:
-        values = [float(v) for v in re.split(r"[,\s]+", f.read()) if v]
-    with subprocess.Popen(["h5dump", "-H", "-d", "/" + name, h5], stdout=subprocess.PIPE, text=True) as p:
-        shape = re.search(r"SIMPLE \{ \( (\d+), (\d+) \)", p.stdout.read())
-    n, columns = int(shape.group(1)), int(shape.group(2))
-    assert len(values) == n * columns, f"{name}: {len(values)} values for {n} x {columns}"
-    return [values[i * columns:(i + 1) * columns] for i in range(n)]
+    """The rows of the two-dimensional dataset `name` in file `h5` (points
+    by components), as lists of floats."""
+    with h5py.File(h5, "r") as f:
+        data = f[name]
+        assert data.ndim == 2, f"{name}: shape {data.shape}"
+        return data[()].astype(float).tolist()
 
 
 def key(point):
@@ -67,10 +64,21 @@ def series(out, stem):
     """The stem_NNNNN.h5 files in `out`, and the times and .h5 files that
     stem.xdmf lists."""
     files = sorted(f for f in os.listdir(out) if f.startswith(stem + "_") and f.endswith(".h5"))
-    with open(os.path.join(out, stem + ".xdmf")) as f:
-        xdmf = f.read()
-    times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', xdmf)]
-    return files, times, re.findall(r'([\w.-]+\.h5):/nodes', xdmf)
+    return (files,) + xdmf_series(os.path.join(out, stem + ".xdmf"))
+
+
+def xdmf_series(path):
+    """The times of an XDMF time series and the .h5 file each one's
+    geometry ('file.h5:/nodes') is in."""
+    times, files = [], []
+    for grid in ET.parse(path).getroot().iter("Grid"):
+        time = grid.find("Time")
+        if time is None:
+            continue
+        times.append(float(time.get("Value")))
+        for item in grid.find("Geometry").iter("DataItem"):
+            files.append(item.text.strip().split(":")[0])
+    return times, files
 
 
 def check_grid(what, out, rows, times, ranks, n_points, total_mass, g, adaptive=False):
@@ -209,25 +217,19 @@ _, output, rows = run("hdf5_grid_adaptive", dict(entries, **{
 out = os.path.join(WORK, "hdf5_grid_adaptive", "output")
 particle_files = sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5"))
 disk_mass = sum(m[0] for m in read_dataset(os.path.join(out, particle_files[0]), "mass"))
-with open(os.path.join(out, "grid.xdmf")) as f:
-    times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', f.read())]
+times, _ = xdmf_series(os.path.join(out, "grid.xdmf"))
 check_grid("adaptive, 2 ranks", out, rows, times, 2, int(rows[0]["particles"]), disk_mass, g, adaptive=True)
 
 # VTU
 _, output, rows = run("vtu_grid", dict(entries, **{"Output/Output format": "vtu", "Time/End time": 0.1}),
                       [body], ranks=2)
 out = os.path.join(WORK, "vtu_grid", "output")
-with open(os.path.join(out, "grid.pvd")) as f:
-    records = re.findall(r'file="([^"]+)"', f.read())
+records = [d.get("file") for d in ET.parse(os.path.join(out, "grid.pvd")).getroot().iter("DataSet")]
 cells = []
 for record in records:
-    with open(os.path.join(out, record)) as f:
-        pieces = re.findall(r'<Piece Source="([^"]+)"', f.read())
-    n = 0
-    for piece in pieces:
-        with open(os.path.join(out, piece)) as f:
-            n += sum(int(c) for c in re.findall(r'NumberOfCells="(\d+)"', f.read()))
-    cells.append(n)
+    pieces = [p.get("Source") for p in ET.parse(os.path.join(out, record)).getroot().iter("Piece")]
+    cells.append(sum(len(block.data) for piece in pieces
+                     for block in meshio.read(os.path.join(out, piece)).cells))
 check("VTU, 2 ranks: grid.pvd lists 3 grid_NNNNN.pvtu (2 pieces each) with 400 cells",
       len(records) == 3 and all(r.startswith("grid_") for r in records) and cells == [400] * 3,
       f"{records}, cells {cells}")

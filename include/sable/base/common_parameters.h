@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <sable/base/parameter_settings.h>
+
 #include <string>
 
 namespace sable
@@ -41,10 +43,13 @@ namespace sable
   /**
    * Read only the common entries of @p filename, skipping all others, so the
    * program can pick the model and the dimension before declaring the rest.
-   * Throws if the file cannot be read or a common entry is invalid.
+   * @p settings (the command line's `--set`) apply to the common entries
+   * and are otherwise left for the full read. Throws if the file cannot be
+   * read or a common entry is invalid.
    */
   CommonParameters
-  read_common_parameters(const std::string &filename);
+  read_common_parameters(const std::string &                  filename,
+                         const std::vector<ParameterSetting> &settings = {});
 } // namespace sable
 
 #endif

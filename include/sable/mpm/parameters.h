@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <sable/base/parameter_settings.h>
 #include <sable/mpm/bodies/body_parameters.h>
 #include <sable/mpm/boundaries/boundary_parameters.h>
 #include <sable/mpm/contact/contact_parameters.h>
@@ -108,12 +109,15 @@ namespace sable::mpm
   };
 
   /**
-   * Read and check the MPM scene in @p filename. Throws InputError naming
-   * the entry, value and allowed range for anything invalid.
+   * Read and check the MPM scene in @p filename, with the entries of
+   * @p settings (the command line's `--set`) changed after the file is read.
+   * Throws InputError naming the entry, value and allowed range for
+   * anything invalid.
    */
   template <int dim>
   Scene<dim>
-  read_scene(const std::string &filename);
+  read_scene(const std::string &                  filename,
+             const std::vector<ParameterSetting> &settings = {});
 
   /**
    * Check parameters that do not depend on the grid, each component with

@@ -27,11 +27,15 @@ namespace sable::mpm
             parallel::distributed::Triangulation<dim> &triangulation,
             bool                                       refine = true);
 
-  /// Read, check and run the MPM scene in @p filename; with @p resume,
-  /// continue it from the last checkpoint in its output directory.
+  /// Read, check and run the MPM scene in @p filename, with the entries of
+  /// @p settings (`--set`) changed; with @p resume, continue it from the
+  /// last checkpoint in its output directory.
   template <int dim>
   void
-  run_scene(const std::string &filename, MPI_Comm communicator, const bool resume = false);
+  run_scene(const std::string &                  filename,
+            MPI_Comm                             communicator,
+            const bool                           resume   = false,
+            const std::vector<ParameterSetting> &settings = {});
 } // namespace sable::mpm
 
 #endif

@@ -4,6 +4,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <sable/base/parameter_settings.h>
+
 #include <string>
 
 namespace sable::qusgm
@@ -13,11 +15,15 @@ namespace sable::qusgm
   declare_parameters(dealii::ParameterHandler &prm);
 
   /**
-   * Read, check and run the QuSGM scene in @p filename; with @p resume,
+   * Read, check and run the QuSGM scene in @p filename, with the entries of
+   * @p settings (`--set`) changed after the file is read; with @p resume,
    * continue from the last checkpoint in its output directory.
    */
   void
-  run_scene(const std::string &filename, MPI_Comm communicator, bool resume = false);
+  run_scene(const std::string &                  filename,
+            MPI_Comm                             communicator,
+            bool                                 resume   = false,
+            const std::vector<ParameterSetting> &settings = {});
 } // namespace sable::qusgm
 
 #endif
