@@ -76,7 +76,7 @@ namespace sable::mpm
           const Tensor<2, dim>          volume_stress =
             momentum_update ? Layout::volume_stress(props) : Tensor<2, dim>();
           if (near_contact)
-            contact->template scatter<pass>(props, shape, volume_stress);
+            contact->template scatter<pass>(props, particle.get_location(), shape, volume_stress);
           if (owned)
             add_to_single_field(particle, props, shape, volume_stress);
         }

@@ -13,11 +13,27 @@ namespace sable::mpm
   template <int dim>
   BardenhagenContact<dim>::BardenhagenContact(
     const ContactParameters &        parameters,
-    const std::vector<unsigned int> &body_groups)
+    const std::vector<unsigned int> &body_groups,
+    const std::vector<unsigned int> &particles_per_direction)
     : parameters(parameters)
     , body_groups(body_groups)
     , use_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
   {
+    // k points per cell direction at (j + 1/2)/k of the cell below the
+    // surface node, weighted by the hat function 1 - y: the centroid lies
+    // sum w y / sum w cells inside the surface
+    for (unsigned int b = 0; b < body_groups.size(); ++b)
+      {
+        const unsigned int k = b < particles_per_direction.size() ? particles_per_direction[b] : 2;
+        double             weighted = 0, weights = 0;
+        for (unsigned int j = 0; j < k; ++j)
+          {
+            const double y = (j + 0.5) / k;
+            weighted += (1 - y) * y;
+            weights += 1 - y;
+          }
+        surface_offset.push_back(weighted / weights);
+      }
     const unsigned int n = body_groups.size();
     pair_forces.assign(parameters.reported_pairs.size(), Tensor<1, dim>());
     // a dense table is fine for the few bodies whose pairs are reported;
@@ -49,44 +65,18 @@ namespace sable::mpm
                                  const std::vector<Tensor<1, dim>> &spacing,
                                  const double                       dt,
                                  const unsigned int                 n_owned_nodes,
-                                 const bool                         record_forces)
+                                 const bool                         record_forces,
+                                 const MPI_Comm                     communicator)
   {
-    // Each node changes only its own records, so the nodes run in parallel;
-    // the sums over nodes are formed per fixed chunk of nodes and then added
-    // chunk by chunk, the same way for any number of threads.
-    const std::vector<unsigned int> &nodes    = fields.get_contact_nodes();
-    const unsigned int               n_chunks = (nodes.size() + chunk_size - 1) / chunk_size;
-    chunk_sums.resize(n_chunks);
-    for (ChunkSums &sums : chunk_sums)
+    // only the 2001 release pulls: then the friction of a pair is capped
+    // by its net normal impulse, which a first pass measures
+    friction_scale.clear();
+    if (use_traction)
       {
-        sums.frictional_heat = sums.momentum_defect = sums.momentum_correction = 0;
-        sums.pair_forces.assign(pair_forces.size(), Tensor<1, dim>());
+        for_each_node(fields, spacing, dt, n_owned_nodes, record_forces, true);
+        compute_friction_scales(communicator);
       }
-    parallel::apply_to_subranges(
-      0u,
-      n_chunks,
-      [&](const unsigned int first_chunk, const unsigned int last_chunk) {
-        Scratch scratch;
-        for (unsigned int chunk = first_chunk; chunk < last_chunk; ++chunk)
-          {
-            const unsigned int last =
-              std::min<unsigned int>((chunk + 1) * chunk_size, nodes.size());
-            for (unsigned int i = chunk * chunk_size; i < last; ++i)
-              {
-                const unsigned int node     = nodes[i];
-                const auto [begin, end]     = fields.node_records(node);
-                apply_at_node(begin,
-                              end,
-                              spacing[node],
-                              dt,
-                              node < n_owned_nodes,
-                              record_forces,
-                              scratch,
-                              chunk_sums[chunk]);
-              }
-          }
-      },
-      1);
+    for_each_node(fields, spacing, dt, n_owned_nodes, record_forces, false);
 
     if (record_forces)
       for (auto &f : pair_forces)
@@ -104,12 +94,102 @@ namespace sable::mpm
 
   template <int dim>
   void
+  BardenhagenContact<dim>::for_each_node(BodyFields<dim> &                  fields,
+                                         const std::vector<Tensor<1, dim>> &spacing,
+                                         const double                       dt,
+                                         const unsigned int                 n_owned_nodes,
+                                         const bool                         record_forces,
+                                         const bool                         measure)
+  {
+    // Each node changes only its own records, so the nodes run in parallel;
+    // the sums over nodes are formed per fixed chunk of nodes and then added
+    // chunk by chunk, the same way for any number of threads.
+    const std::vector<unsigned int> &nodes    = fields.get_contact_nodes();
+    const unsigned int               n_chunks = (nodes.size() + chunk_size - 1) / chunk_size;
+    chunk_sums.resize(n_chunks);
+    for (ChunkSums &sums : chunk_sums)
+      {
+        sums.frictional_heat = sums.momentum_defect = sums.momentum_correction = 0;
+        sums.pair_forces.assign(pair_forces.size(), Tensor<1, dim>());
+        sums.pair_impulses.clear();
+      }
+    parallel::apply_to_subranges(
+      0u,
+      n_chunks,
+      [&](const unsigned int first_chunk, const unsigned int last_chunk) {
+        Scratch scratch;
+        for (unsigned int chunk = first_chunk; chunk < last_chunk; ++chunk)
+          {
+            const unsigned int last =
+              std::min<unsigned int>((chunk + 1) * chunk_size, nodes.size());
+            for (unsigned int i = chunk * chunk_size; i < last; ++i)
+              {
+                const unsigned int node = nodes[i];
+                const auto [begin, end] = fields.node_records(node);
+                apply_at_node(begin,
+                              end,
+                              spacing[node],
+                              dt,
+                              node < n_owned_nodes,
+                              record_forces,
+                              measure,
+                              scratch,
+                              chunk_sums[chunk]);
+              }
+          }
+      },
+      1);
+  }
+
+  template <int dim>
+  void
+  BardenhagenContact<dim>::compute_friction_scales(const MPI_Comm communicator)
+  {
+    // per pair: net normal impulse, friction impulse (chunk by chunk, so
+    // the sums do not depend on the threads)
+    std::map<std::pair<unsigned int, unsigned int>, std::pair<double, double>> totals;
+    for (const ChunkSums &sums : chunk_sums)
+      for (const PairImpulse &impulse : sums.pair_impulses)
+        {
+          auto &total = totals[impulse.pair];
+          total.first += impulse.normal;
+          total.second += impulse.friction;
+        }
+    if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+      {
+        // every rank's pairs to every rank, added in rank order
+        std::vector<double> local;
+        for (const auto &[pair, total] : totals)
+          local.insert(local.end(), {double(pair.first), double(pair.second), total.first, total.second});
+        totals.clear();
+        for (const std::vector<double> &part : Utilities::MPI::all_gather(communicator, local))
+          for (unsigned int i = 0; i + 3 < part.size(); i += 4)
+            {
+              auto &total = totals[{static_cast<unsigned int>(part[i]),
+                                    static_cast<unsigned int>(part[i + 1])}];
+              total.first += part[i + 2];
+              total.second += part[i + 3];
+            }
+      }
+    for (const auto &[pair, total] : totals)
+      {
+        const double mu =
+          parameters.friction_between(body_groups[pair.first], body_groups[pair.second]);
+        const double allowed = mu * std::max(total.first, 0.);
+        if (total.second > allowed)
+          friction_scale[pair] = allowed / total.second;
+      }
+  }
+
+  template <int dim>
+  void
   BardenhagenContact<dim>::apply_at_node(typename BodyFields<dim>::Record *begin,
                                          typename BodyFields<dim>::Record *end,
                                          const Tensor<1, dim> &            spacing,
                                          const double                      dt,
                                          const bool                        owned,
                                          const bool                        record_forces,
+                                         const bool                        measure,
                                          Scratch &                         scratch,
                                          ChunkSums &                       sums) const
   {
@@ -146,11 +226,15 @@ namespace sable::mpm
       }
     // weights of the bodies' directions when they are made collinear
     const auto weight = [&](const unsigned int a) {
-      return parameters.mass_weighted_normals ? begin[a].mass : 1.;
+      return parameters.normals == ContactParameters::Normals::average ? 1. : begin[a].mass;
     };
     if (n == 2)
       {
         Tensor<1, dim> common = weight(0) * normal[0] - weight(1) * normal[1];
+        // the normal of the body with more mass at the node, whose surface
+        // the node resolves better: a flat plane's, not a block corner's
+        if (parameters.normals == ContactParameters::Normals::largest_mass)
+          common = begin[0].mass >= begin[1].mass ? normal[0] : Tensor<1, dim>(-normal[1]);
         const double   norm   = common.norm();
         if (norm == 0)
           return;
@@ -171,7 +255,7 @@ namespace sable::mpm
             others /= std::max(total_mass - begin[a].mass,
                                std::numeric_limits<double>::min());
             const double   own_weight =
-              parameters.mass_weighted_normals ?
+              parameters.normals != ContactParameters::Normals::average ?
                 begin[a].mass / std::max(total_mass - begin[a].mass,
                                          std::numeric_limits<double>::min()) :
                 1.;
@@ -198,6 +282,22 @@ namespace sable::mpm
           mean_traction = (begin[0].mass * traction(0) + begin[1].mass * traction(1)) /
                           total_mass;
         node_acts = approach > 0 || mean_traction < 0;
+        if (node_acts && begin[0].mass > 0 && begin[1].mass > 0 &&
+            parameters.detection == ContactParameters::Detection::surface_position)
+          {
+            // the surfaces meet within the step if the centroids' distance
+            // along the normal, less what the bodies close in dt, is at most
+            // the distance they have when touching
+            const Tensor<1, dim> between = begin[1].mass_position / begin[1].mass -
+                                           begin[0].mass_position / begin[0].mass;
+            double cell = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              cell += std::pow(normal[0][d] * spacing[d], 2);
+            const double closing  = (begin[0].new_velocity - begin[1].new_velocity) * normal[0];
+            const double touching = (surface_offset[begin[0].body] + surface_offset[begin[1].body]) *
+                                    std::sqrt(cell);
+            node_acts = between * normal[0] - dt * std::max(closing, 0.) <= touching;
+          }
       }
 
     double rate = 0;
@@ -223,6 +323,31 @@ namespace sable::mpm
         change[a]                               = correction.change;
         tangential_speed[a]                     = correction.tangential_speed;
         tangential_change[a]                    = correction.tangential_change;
+        if (use_traction && std::isfinite(mu))
+          {
+            // the pair's normal impulses, pulling ones included, and its
+            // friction impulses
+            const std::pair<unsigned int, unsigned int> pair(
+              std::min(r.body, begin[other].body), std::max(r.body, begin[other].body));
+            if (measure)
+              {
+                if (owned)
+                  sums.pair_impulses.push_back(
+                    {pair, r.mass * dv_n, r.mass * correction.tangential_change});
+                continue;
+              }
+            const auto capped = correction.tangential_change > 0 ? friction_scale.find(pair) :
+                                                                   friction_scale.end();
+            if (capped != friction_scale.end())
+              {
+                // the normal part stays, the friction part shrinks
+                const Tensor<1, dim> normal_part = -dv_n * normal[a];
+                change[a] = normal_part + capped->second * (correction.change - normal_part);
+                tangential_change[a] *= capped->second;
+              }
+          }
+        if (measure)
+          continue;
         // the cell-collapse rate of paper 002 section 2.2
         const double mass_ratio = std::max(r.mass / std::max(total_mass - r.mass,
                                                              std::numeric_limits<double>::min()),
@@ -231,6 +356,8 @@ namespace sable::mpm
           rate = std::max(rate, mass_ratio * std::abs(change[a][d]) / spacing[d]);
       }
 
+    if (measure)
+      return;
     double scale = 1;
     if (parameters.impulse_scaling > 0 && rate * dt > parameters.impulse_scaling)
       scale = parameters.impulse_scaling / (rate * dt);

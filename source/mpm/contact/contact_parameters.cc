@@ -14,8 +14,13 @@ namespace sable::mpm
       {"bardenhagen 2000", ContactParameters::Model::bardenhagen_2000},
       {"bardenhagen 2001", ContactParameters::Model::bardenhagen_2001}};
 
-    /// Normals: mass weighted (true) or average (false)
-    const NamedChoice<bool> normals{{"mass weighted", true}, {"average", false}};
+    const NamedChoice<ContactParameters::Normals> normal_methods{
+      {"mass weighted", ContactParameters::Normals::mass_weighted},
+      {"average", ContactParameters::Normals::average},
+      {"largest mass", ContactParameters::Normals::largest_mass}};
+    const NamedChoice<ContactParameters::Detection> detections{
+      {"shared nodes", ContactParameters::Detection::shared_nodes},
+      {"surface position", ContactParameters::Detection::surface_position}};
   } // namespace
 
   void
@@ -30,15 +35,30 @@ namespace sable::mpm
                       "friction while bodies approach. bardenhagen 2001: also "
                       "while the normal traction is compressive.");
     prm.declare_entry("Normals",
-                      "mass weighted",
-                      normals.pattern(),
-                      "How the bodies' normals at a node are made collinear "
-                      "(so contact conserves momentum): 'average' is the "
+                      "largest mass",
+                      normal_methods.pattern(),
+                      "How the bodies' normals at a two-body node are made "
+                      "collinear (so contact conserves momentum). 'largest "
+                      "mass' (default) takes the normal of the body with "
+                      "the larger mass at the node, whose surface the node "
+                      "resolves better: a block sliding on a plane body then "
+                      "meets the plane's normal, not its own corner's "
+                      "tilted one (which plows). 'average' is the "
                       "papers' n = (n1 - n2)/|n1 - n2| of the unit mass-"
                       "gradient directions; 'mass weighted' weights each "
                       "direction by the body's nodal mass, so that a large "
-                      "flat body's normal is not tilted by a small body's "
+                      "flat body's normal is tilted less by a small body's "
                       "corner (see doc/mpm.md).");
+    prm.declare_entry("Detection",
+                      "shared nodes",
+                      detections.pattern(),
+                      "Where two bodies are in contact. 'shared nodes': at "
+                      "every node both bodies' points reach (the papers; "
+                      "contact may act up to about a cell before the point "
+                      "clouds touch). 'surface position': only where the "
+                      "distance between the bodies' mass centroids at the "
+                      "node, along the normal, shows that their surfaces "
+                      "meet within the step (see doc/mpm.md).");
     prm.declare_entry("Friction coefficient",
                       "0",
                       Patterns::Anything(),
@@ -73,7 +93,8 @@ namespace sable::mpm
   {
     ContactParameters &c = *this;
     c.model                 = models.value(prm.get("Model"));
-    c.mass_weighted_normals = normals.value(prm.get("Normals"));
+    c.normals               = normal_methods.value(prm.get("Normals"));
+    c.detection             = detections.value(prm.get("Detection"));
     c.friction = parse_friction(prm.get("Friction coefficient"), "Contact/Friction coefficient");
     for (const auto &[pair, value] : split_map(prm.get("Group friction")))
       {

@@ -8,11 +8,14 @@
 namespace sable::mpm
 {
   template <int dim>
-  MultiBodyContact<dim>::MultiBodyContact(const ContactParameters &        parameters,
-                                          const std::vector<unsigned int> &body_groups)
+  MultiBodyContact<dim>::MultiBodyContact(
+    const ContactParameters &        parameters,
+    const std::vector<unsigned int> &body_groups,
+    const std::vector<unsigned int> &particles_per_direction)
     : parameters(parameters)
     , with_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
-    , model(parameters, body_groups)
+    , with_position(parameters.detection == ContactParameters::Detection::surface_position)
+    , model(parameters, body_groups, particles_per_direction)
   {}
 
   template <int dim>
@@ -94,7 +97,12 @@ namespace sable::mpm
       },
       256);
     if (momentum_update ? parameters.on_momentum_update : parameters.on_strain_update)
-      model.apply(fields, grid.node_spacing(), time_step, n_owned_nodes, momentum_update);
+      model.apply(fields,
+                  grid.node_spacing(),
+                  time_step,
+                  n_owned_nodes,
+                  momentum_update,
+                  grid.triangulation.get_communicator());
     if (!boundary_conditions.empty())
       boundary_conditions.apply_to_bodies(fields, !momentum_update);
   }

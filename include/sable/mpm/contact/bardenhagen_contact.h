@@ -4,6 +4,9 @@
 #include <sable/mpm/contact/body_fields.h>
 #include <sable/mpm/parameters.h>
 
+#include <deal.II/base/mpi.h>
+
+#include <map>
 #include <vector>
 
 namespace sable::mpm
@@ -23,7 +26,11 @@ namespace sable::mpm
    * - release: 2000 acts while the bodies approach; 2001 also while the
    *   mass-weighted normal traction at the node is compressive;
    * - Coulomb friction with mu' = min(mu, |dv_t|/|dv_n|), mu = infinity
-   *   sticks;
+   *   sticks; with the 2001 release, which may hold separating nodes
+   *   together with pulling normal impulses, the friction of each pair of
+   *   bodies is also capped by mu times the pair's net normal impulse over
+   *   all its nodes (a first pass measures both), so that the interface
+   *   obeys Coulomb as a whole;
    * - impulse scaling (paper 002 eq. 22 with the erratum: the factor is
    *   min(gamma/(rate dt), 1)), one factor per node so momentum is kept.
    */
@@ -31,8 +38,11 @@ namespace sable::mpm
   class BardenhagenContact
   {
   public:
-    BardenhagenContact(const ContactParameters &      parameters,
-                       const std::vector<unsigned int> &body_groups);
+    /// @p particles_per_direction: per body (for the 'surface position'
+    /// detection; empty: 2 everywhere).
+    BardenhagenContact(const ContactParameters &        parameters,
+                       const std::vector<unsigned int> &body_groups,
+                       const std::vector<unsigned int> &particles_per_direction = {});
 
     /**
      * Apply contact at every contact node. @p spacing gives the cell size
@@ -47,7 +57,8 @@ namespace sable::mpm
           const std::vector<Tensor<1, dim>> &spacing,
           const double                       dt,
           const unsigned int                 n_owned_nodes,
-          const bool                         record_forces);
+          const bool                         record_forces,
+          const MPI_Comm                     communicator = MPI_COMM_SELF);
 
     /// Frictional work converted to heat so far (this rank's nodes).
     double frictional_heat = 0;
@@ -62,6 +73,15 @@ namespace sable::mpm
     std::vector<Tensor<1, dim>> pair_forces;
 
   private:
+    /// The normal impulse (compressive > 0) and the friction impulse one
+    /// body of a pair receives at one node, before the pair's cap.
+    struct PairImpulse
+    {
+      std::pair<unsigned int, unsigned int> pair;
+      double                                normal;
+      double                                friction;
+    };
+
     /// What one chunk of contact nodes adds to the running sums above.
     struct ChunkSums
     {
@@ -69,6 +89,7 @@ namespace sable::mpm
       double                      momentum_defect     = 0;
       double                      momentum_correction = 0;
       std::vector<Tensor<1, dim>> pair_forces;
+      std::vector<PairImpulse>    pair_impulses;
     };
 
     /// Per-body scratch of one node (nodes rarely hold more than a few
@@ -83,7 +104,8 @@ namespace sable::mpm
     /// sums, added chunk by chunk, do not depend on the number of threads.
     static constexpr unsigned int chunk_size = 256;
 
-    /// Contact at one node: changes only that node's records.
+    /// Contact at one node: changes only that node's records; or, with
+    /// @p measure, only adds the node's pair impulses to @p sums.
     void
     apply_at_node(typename BodyFields<dim>::Record *begin,
                   typename BodyFields<dim>::Record *end,
@@ -91,19 +113,39 @@ namespace sable::mpm
                   const double                      dt,
                   const bool                        owned,
                   const bool                        record_forces,
+                  const bool                        measure,
                   Scratch &                         scratch,
                   ChunkSums &                       sums) const;
+
+    /// Run apply_at_node() over all contact nodes, chunk by chunk.
+    void
+    for_each_node(BodyFields<dim> &                  fields,
+                  const std::vector<Tensor<1, dim>> &spacing,
+                  const double                       dt,
+                  const unsigned int                 n_owned_nodes,
+                  const bool                         record_forces,
+                  const bool                         measure);
+
+    /// The friction cap per pair from the measured impulses, summed over
+    /// all ranks: mu N_net / F_t where the friction exceeds mu N_net.
+    void
+    compute_friction_scales(const MPI_Comm communicator);
 
     const ContactParameters   parameters;
     std::vector<unsigned int> body_groups;
     /// index into pair_forces of the pair (a, b), a < b; or invalid
     std::vector<unsigned int> reported_pair_index;
     const bool                use_traction;
+    /// per body: the distance from its surface to its mass centroid at a
+    /// surface node, in cells (points filling the cells up to the surface)
+    std::vector<double> surface_offset;
 
     unsigned int
     pair_index(const unsigned int a, const unsigned int b) const;
 
     std::vector<ChunkSums> chunk_sums;
+    /// this pass's friction scale of the pairs whose friction is capped
+    std::map<std::pair<unsigned int, unsigned int>, double> friction_scale;
   };
 } // namespace sable::mpm
 

@@ -34,6 +34,8 @@ namespace sable::mpm
       Tensor<1, dim> force;
       /// sum_p m_p grad N: its direction is the body's outward normal
       Tensor<1, dim> mass_gradient;
+      /// sum_p m_p N x_p: over mass, the body's centroid near the node
+      Tensor<1, dim> mass_position;
       /// sum_p m_p sigma_p N (in-plane part), for the traction criterion
       SymmetricTensor<2, dim> mass_stress;
       Tensor<1, dim>          old_velocity;

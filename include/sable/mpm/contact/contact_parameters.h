@@ -22,10 +22,32 @@ namespace sable::mpm
       bardenhagen_2001  ///< ... or while the normal traction is compressive
     };
     Model model = Model::none;
-    /// How a node's body normals are made collinear: from the bodies'
-    /// mass-gradient directions weighted by their nodal masses (the
-    /// default), or with equal weights, n = (n1 - n2)/|n1 - n2| (papers).
-    bool mass_weighted_normals = true;
+    /// How a node's body normals are made collinear (two-body nodes).
+    enum class Normals
+    {
+      /// the bodies' mass-gradient directions weighted by their nodal
+      /// masses, n = (m1 n1 - m2 n2)/|m1 n1 - m2 n2|
+      mass_weighted,
+      /// equal weights, n = (n1 - n2)/|n1 - n2| (the papers)
+      average,
+      /// the normal of the body with the larger mass at the node, whose
+      /// surface the node resolves better (a flat plane's, not the corner
+      /// of a block resting on it)
+      largest_mass
+    };
+    Normals normals = Normals::largest_mass;
+    /// Which two-body nodes may act: every node the bodies share (the
+    /// papers), or only where the bodies' surfaces have met, judged from
+    /// the distance between their mass centroids at the node along the
+    /// normal (in the spirit of NairnMPM's position check): acts if
+    /// d - dt * approach <= (c_a + c_b) h_n, with c the centroid offset of
+    /// a body whose points fill the cells up to its surface.
+    enum class Detection
+    {
+      shared_nodes,
+      surface_position
+    };
+    Detection detection = Detection::shared_nodes;
     /// Coulomb coefficient for pairs of groups not listed below;
     /// infinity means sticking contact.
     double                                                  friction = 0.;

@@ -36,8 +36,11 @@ namespace sable::mpm
   public:
     using Record = typename BodyFields<dim>::Record;
 
+    /// @p particles_per_direction: each body's points per cell direction
+    /// (the 'surface position' detection needs them).
     MultiBodyContact(const ContactParameters &        parameters,
-                     const std::vector<unsigned int> &body_groups);
+                     const std::vector<unsigned int> &body_groups,
+                     const std::vector<unsigned int> &particles_per_direction = {});
 
     /// Find this step's contact nodes (bodies per node) and create their
     /// zeroed records; threaded over the cells of @p colouring.
@@ -70,6 +73,7 @@ namespace sable::mpm
     template <GridPass pass>
     void
     scatter(const ArrayView<const double> &   properties,
+            const Point<dim> &                location,
             const typename Grid<dim>::Shape &shape,
             const Tensor<2, dim> &            volume_stress)
     {
@@ -88,6 +92,8 @@ namespace sable::mpm
             {
               record.force -= volume_stress * shape.gradients[v];
               record.mass_gradient += mass * shape.gradients[v];
+              if (with_position)
+                record.mass_position += weight * location;
               if (with_traction)
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = i; j < dim; ++j)
@@ -143,6 +149,7 @@ namespace sable::mpm
   private:
     const ContactParameters parameters;
     const bool              with_traction;
+    const bool              with_position;
     BodyFields<dim>         fields;
     BardenhagenContact<dim> model;
   };
