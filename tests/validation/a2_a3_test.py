@@ -10,11 +10,14 @@ Tolerances come from runs of exactly these scenes (the full runs to 1 s are in
 doc/validation/a2_a3.md):
 - A2 no-slip (theta = pi/4, mu = 0.495), to 0.4 s: the deformable sphere lags
   the rigid rolling solution x - x0 = (25 sqrt(2)/14) t^2: measured x error
-  -24.5% of the rigid displacement, v error -32.7%, spin omega R / v = 0.58
-  (mass-weighted normals; -27.2%, -37.9%, 0.99 with the papers' average
-  normals). Bands: x error in [-40%, -15%], v error in [-50%, -15%],
-  omega R / v >= 0.45. A frictionless sphere would be at x +40%; a stuck one
-  at -100%; a sphere sliding without rolling has omega R / v near 0.
+  -20.0% of the rigid displacement, v error -24.4%, spin omega R / v = 0.31
+  (mass-weighted normals, with the 2001 rule's friction capped by mu times
+  each pair's net normal impulse; before that cap -24.5%, -32.7%, 0.58: the
+  pulling nodes of the 2001 rule let the friction exceed mu times the net
+  normal force, which spun the sphere up). Bands: x error in [-40%, -15%],
+  v error in [-50%, -15%], omega R / v >= 0.25. A frictionless sphere would
+  be at x +40%; a stuck one at -100%; a sphere sliding without rolling has
+  omega R / v near 0.
 - A3 backspin (mu = 0.5, spin 5 rad/s, R = 1 m), to 0.25 s, inside the
   sliding phase (t1 = 2/7 s) of x - x0 = (5/2) t^2: measured x error +57.8%,
   v error -8.5%: at R/4 the sphere hops and its centre accelerates faster than
@@ -87,7 +90,7 @@ ex, ev = errors("A2 no-slip", rows, a2_noslip, END)
 check("A2 no-slip: x error in [-40%, -15%] of the rigid displacement", -0.40 <= ex <= -0.15, f"{ex:+.4f}")
 check("A2 no-slip: v error in [-50%, -15%] of the rigid velocity", -0.50 <= ev <= -0.15, f"{ev:+.4f}")
 ratio = -state["omega"] * 1.6 / state["vx"]
-check("A2 no-slip: the sphere rolls, omega R / v >= 0.45", ratio >= 0.45, f"{ratio:.4f} (rigid 1)")
+check("A2 no-slip: the sphere rolls, omega R / v >= 0.25", ratio >= 0.25, f"{ratio:.4f} (rigid 1)")
 gap = state["sphere_min_y"] - state["plane_max_y"]
 check("A2 no-slip: no interpenetration (sphere's lowest point above the plane's highest)", gap > 0, f"{gap:.4f} m")
 
