@@ -1,7 +1,9 @@
 // A deal.II program that builds its own mesh and hands it to sable: an
 // elastic disk thrown against a slip wall, stepped from this program's own
-// loop. Prints the disk's centre of mass and returns non-zero if momentum
-// in the wall-parallel direction was not conserved.
+// loop, which writes statistics every step and particle files every tenth
+// step into the directory given as the first argument (default
+// output/embedded). Prints the disk's centre of mass and returns non-zero
+// if momentum in the wall-parallel direction was not conserved.
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_generator.h>
 
@@ -24,7 +26,11 @@ main(int argc, char **argv)
   sable::mpm::SimulatorParameters<2> parameters;
   parameters.end_time      = 0.05;
   parameters.print_timings = false;
+  parameters.output_directory = argc > 1 ? argv[1] : "output/embedded";
   parameters.boundaries[0].type = sable::mpm::BoundaryType::slip; // x = 0
+  // a friction wall at y = 1, which the disk does not reach in this time
+  parameters.boundaries[3].type     = sable::mpm::BoundaryType::friction;
+  parameters.boundaries[3].friction = 0.3;
 
   sable::mpm::Simulator<2> simulator(triangulation, parameters);
 
@@ -40,8 +46,14 @@ main(int argc, char **argv)
 
   simulator.initialize();
   const auto start = simulator.compute_statistics();
+  simulator.write_output();
   while (simulator.get_time() < parameters.end_time * (1 - 1e-12))
-    simulator.step();
+    {
+      simulator.step();
+      simulator.write_statistics();
+      if (simulator.get_step_number() % 10 == 0)
+        simulator.write_output();
+    }
   const auto end = simulator.compute_statistics();
 
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
