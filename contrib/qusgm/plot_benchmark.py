@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Plots of the QuSGM benchmark (contrib/benchmarks/qusgm): cost of one
 increment against N, and error of the increment's stress change against
 wall time for the minimisers and stopping tests.
@@ -8,7 +8,11 @@ Usage: plot_benchmark.py scaling.csv accuracy.csv out.png
 import csv
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    raise SystemExit(f"{sys.argv[0]}: needs matplotlib, which {sys.executable} does not have "
+                     "(Debian: apt-get install python3-matplotlib; run the script with /usr/bin/python3)")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """K and G of a QuSGM pack against the confining stress, with the effective
 medium theory (Walton/Digby) for the same grains, coordination and solid
 fraction; prints the fitted growth exponents.
@@ -9,7 +9,11 @@ import csv
 import math
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    raise SystemExit(f"{sys.argv[0]}: needs matplotlib, which {sys.executable} does not have "
+                     "(Debian: apt-get install python3-matplotlib; run the script with /usr/bin/python3)")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Validation scene A1 (Bardenhagen, Brackbill, Sulsky 2000, Figs. 2-4): an
 elastic disk on an incline, 2D.
 
@@ -9,10 +9,11 @@ solution from rest,
     x(t) - x0 = 1/2 a t^2,  v(t) = a t,
     a = |g| (sin(theta) - mu cos(theta))   if tan(theta) > 3 mu  (slips),
     a = 2/3 |g| sin(theta)                 otherwise             (rolls),
-and writes doc/validation/a1_table.md and doc/validation/a1_incline.png.
+and writes a1_table.md and a1_incline.png into --output-dir (default: the
+work directory; doc/validation for the report).
 
 Usage: contrib/validation/a1_incline.py [--sable build/sable]
-           [--work DIR] [--end-time T] [--output-dir doc/validation]
+           [--work DIR] [--end-time T] [--output-dir DIR]
 The scene files are the middle-resolution ones in prm/; the other
 resolutions change only `Grid/Subdivisions` (and the output directory)."""
 import argparse
@@ -72,7 +73,7 @@ def run(sable, prm_path, directory, cells, end_time=None):
         text = variant(f.read(), cells, f"{name}_n{cells}", end_time)
     with open(scene, "w") as f:
         f.write(text)
-    result = subprocess.run([sable, os.path.basename(scene)], cwd=directory,
+    result = subprocess.run([sable, os.path.basename(scene), "--overwrite"], cwd=directory,
                             capture_output=True, text=True)
     output = result.stdout + result.stderr
     if result.returncode != 0:
@@ -107,14 +108,28 @@ def order(hs, es):
     return sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sum((x - mx) ** 2 for x in lx)
 
 
+def require_matplotlib():
+    """Stop before any simulation if this Python cannot draw the figure."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise SystemExit(f"{sys.argv[0]}: the figure needs matplotlib, which {sys.executable} "
+                         "does not have (Debian: apt-get install python3-matplotlib, then run "
+                         "the script as it is, with /usr/bin/python3)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sable", default=os.path.join(ROOT, "build", "sable"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "a1_incline.work"))
     parser.add_argument("--end-time", type=float, default=None,
                         help="override the scenes' end time (1 s)")
-    parser.add_argument("--output-dir", default=os.path.join(ROOT, "doc", "validation"))
+    parser.add_argument("--output-dir", default=None,
+                        help="where the table and figure go (default: the work "
+                             "directory; doc/validation updates the report)")
     args = parser.parse_args()
+    args.output_dir = args.output_dir or args.work
+    require_matplotlib()
     sable = os.path.abspath(args.sable)
     work = os.path.abspath(args.work)
 

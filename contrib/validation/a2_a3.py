@@ -14,11 +14,12 @@ A2 runs at cells R/2, R/4, R/8, A3 at R/4 and R/8 (`--resolutions` limits
 the set). Each run compares the sphere's centre of mass (body0_x, body0_vx
 of statistics.csv, every step) with the rigid solution and writes the final
 particle state once, from which the sphere's spin omega R / v_cm is taken.
-Output: doc/validation/a2_a3_table.md and doc/validation/a2_a3.png.
+Output: a2_a3_table.md and a2_a3.png in --output-dir (default: the work
+directory; doc/validation for the report).
 
 Usage: contrib/validation/a2_a3.py [--sable build/sable] [--work DIR]
            [--end-time T] [--resolutions 2,4,8] [--cases a2_noslip,...]
-           [--output-dir doc/validation]
+           [--output-dir DIR]
 The scene files run as they are, with `--set` for `Grid/Subdivisions`, the
 output directory, the end time and (for the spin) the particle output
 interval. Particle files are read with meshio (Debian's /usr/bin/python3
@@ -157,6 +158,16 @@ def order(hs, es):
     return sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sum((x - mx) ** 2 for x in lx)
 
 
+def require_matplotlib():
+    """Stop before any simulation if this Python cannot draw the figure."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise SystemExit(f"{sys.argv[0]}: the figure needs matplotlib, which {sys.executable} "
+                         "does not have (Debian: apt-get install python3-matplotlib, then run "
+                         "the script as it is, with /usr/bin/python3)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sable", default=os.path.join(ROOT, "build", "sable"))
@@ -166,8 +177,12 @@ def main():
     parser.add_argument("--resolutions", default="2,4,8",
                         help="cells per radius to run, among 2 (A2 only), 4, 8")
     parser.add_argument("--cases", default=",".join(c[0] for c in CASES))
-    parser.add_argument("--output-dir", default=os.path.join(ROOT, "doc", "validation"))
+    parser.add_argument("--output-dir", default=None,
+                        help="where the table and figure go (default: the work "
+                             "directory; doc/validation updates the report)")
     args = parser.parse_args()
+    args.output_dir = args.output_dir or args.work
+    require_matplotlib()
     sable = os.path.abspath(args.sable)
     work = os.path.abspath(args.work)
     wanted = {int(n) for n in args.resolutions.split(",")}

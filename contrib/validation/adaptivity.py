@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """What adaptive grids buy: scenes A1 (theta = pi/6, mu = 0.5, a rolling
 disk) and A3 (backspin sphere) on a uniform coarse grid, a uniform fine grid
 (one level finer), and the coarse grid refined to the fine size (a) around the
@@ -9,10 +9,11 @@ friction wall, A3's sphere and plane where they meet). Errors against the rigid-
 solutions of contrib/validation/a1_incline.py and a2_a3.py, wall times of
 one run each on one MPI rank, all in one invocation so the times compare.
 
-Writes doc/validation/adaptivity_table.md.
+Writes adaptivity_table.md into --output-dir (default: the work directory;
+doc/validation for the report).
 
 Usage: contrib/validation/adaptivity.py [--sable build/sable] [--work DIR]
-           [--output-dir doc/validation] [--interval N]"""
+           [--output-dir DIR] [--interval N]"""
 import argparse
 import csv
 import math
@@ -68,7 +69,7 @@ def run(sable, work, scene, label, subdivisions, criteria, interval):
         text = scene_text(f.read(), subdivisions, name, criteria, interval)
     with open(os.path.join(work, name + ".prm"), "w") as f:
         f.write(text)
-    result = subprocess.run([sable, name + ".prm"], cwd=work, capture_output=True, text=True)
+    result = subprocess.run([sable, name + ".prm", "--overwrite"], cwd=work, capture_output=True, text=True)
     if result.returncode != 0:
         sys.stderr.write(result.stdout + result.stderr)
         raise SystemExit(f"{name}: sable exited with {result.returncode}")
@@ -94,10 +95,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sable", default=os.path.join(ROOT, "build", "sable"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "validation_adaptivity"))
-    parser.add_argument("--output-dir", default=os.path.join(ROOT, "doc", "validation"))
+    parser.add_argument("--output-dir", default=None,
+                        help="where the table goes (default: the work directory; "
+                             "doc/validation updates the report)")
     parser.add_argument("--interval", type=int, default=None,
                         help="refinement interval for every case (0: automatic)")
     args = parser.parse_args()
+    args.output_dir = args.output_dir or args.work
     lines = ["| case | grid | cells (start-max) | points | steps | wall s | x err at T | max \\|x err\\| "
              "| v err at T | error / fine | time / fine |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
