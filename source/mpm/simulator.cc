@@ -760,6 +760,26 @@ namespace sable::mpm
       }
   }
 
+  template <int dim>
+  void
+  Simulator<dim>::write_output()
+  {
+    AssertThrow(initialized && !parameters.output_directory.empty(),
+                ExcMessage("write_output() needs an initialized Simulator with an output directory."));
+    write_particles();
+  }
+
+  template <int dim>
+  Statistics<dim>
+  Simulator<dim>::write_statistics()
+  {
+    AssertThrow(initialized, ExcMessage("write_statistics() needs an initialized Simulator."));
+    const Statistics<dim> s = compute_statistics();
+    statistics_file->write_row(
+      state.step_number, state.time, state.time_step, state.boundary_work, s);
+    return s;
+  }
+
   template class Simulator<2>;
   template class Simulator<3>;
 } // namespace sable::mpm

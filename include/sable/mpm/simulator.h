@@ -75,6 +75,19 @@ namespace sable::mpm
     void
     run();
 
+    /// For a program's own step() loop (collective; after initialize()):
+    /// write the particle files of the current state, with the contact
+    /// nodes and the grid if the parameters ask for them, into the output
+    /// directory, as run() does every output interval.
+    void
+    write_output();
+
+    /// For a program's own step() loop (collective; after initialize()):
+    /// append the current statistics as a row of
+    /// <output directory>/statistics.csv, as run() does; returns them.
+    Statistics<dim>
+    write_statistics();
+
     /**
      * Write a checkpoint of the run into @p directory (collective): the
      * mesh and the material points with all their properties through
