@@ -46,10 +46,12 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 4: the run state as one RunState, the contact nodes as an output
-      /// series (3: the grid's base level and the grid output series;
-      /// 1 and 2 have a coarse mesh of every subdivision cell)
-      unsigned int          format         = 4;
+      /// 5: the friction heat of the walls (4: the run
+      /// state as one RunState, the contact nodes as an output series;
+      /// 3: the grid's base level and the grid output series; 1 and 2 have
+      /// a coarse mesh of every subdivision cell)
+      static constexpr unsigned int current_format = 5;
+      unsigned int          format         = current_format;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
       unsigned int          n_properties   = 0;
@@ -59,6 +61,7 @@ namespace sable::mpm
       std::vector<double>   grid_box;
       unsigned long long    n_particles  = 0;
       RunState              run;
+      double                wall_heat        = 0;
       bool                  with_contact            = false;
       double                frictional_heat         = 0;
       double                momentum_defect         = 0;
@@ -76,8 +79,9 @@ namespace sable::mpm
       serialize(Archive &ar, const unsigned int)
       {
         ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
-        ar &n_particles &run;
-        ar &with_contact &frictional_heat &momentum_defect &momentum_correction &pair_forces;
+        ar &n_particles &run &wall_heat;
+        ar &with_contact &frictional_heat &momentum_defect &momentum_correction;
+        ar &pair_forces;
         ar &particle_files &contact_node_files &contact_node_xdmf_entries &xdmf_entries;
         ar &grid_files &grid_xdmf_entries;
       }
@@ -159,6 +163,7 @@ namespace sable::mpm
     state.grid_box                = grid_box(triangulation);
     state.n_particles             = particle_handler->n_global_particles();
     state.run                     = this->state;
+    state.wall_heat = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
     state.particle_files          = particle_series.files;
     state.contact_node_files        = contact_node_series.files;
     state.contact_node_xdmf_entries = contact_node_series.xdmf_entries;
@@ -230,10 +235,11 @@ namespace sable::mpm
       return "cannot resume from '" + directory + "': it holds a scene with " + what + " " +
              saved + ", the parameter file gives " + now;
     };
-    require(state.format == 4 && state.dimension == dim,
+    require(state.format == SavedState<dim>::current_format && state.dimension == dim,
             mismatch("format/dimension",
                      std::to_string(state.format) + "/" + std::to_string(state.dimension),
-                     "3 (this version of sable)/" + std::to_string(dim)));
+                     std::to_string(SavedState<dim>::current_format) +
+                       " (this version of sable)/" + std::to_string(dim)));
     require(state.n_bodies == parameters.bodies.size(),
             mismatch("'Number of bodies' =",
                      std::to_string(state.n_bodies),
@@ -286,6 +292,8 @@ namespace sable::mpm
 
     const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
     this->state                  = state.run;
+    // the sums over ranks continue on rank 0
+    boundary_conditions.frictional_heat = root ? state.wall_heat : 0.;
     particle_series.files        = state.particle_files;
     contact_node_series.files        = state.contact_node_files;
     contact_node_series.xdmf_entries = state.contact_node_xdmf_entries;

@@ -173,6 +173,18 @@ namespace sable::mpm
                       "Stop the run when kinetic + strain energy exceeds this "
                       "factor (> 1) times the energy the scene can hold: the "
                       "initial energy plus the work of gravity and walls.");
+    prm.declare_entry("Energy drift limit",
+                      "0.5",
+                      Patterns::Double(),
+                      "Stop the run when the energy balance (the column "
+                      "energy_drift of statistics.csv: kinetic + strain + "
+                      "gravitational energy + plastic work + wall and contact "
+                      "friction heat - boundary work, change since the start over "
+                      "the energy the scene can hold) gains more than this "
+                      "fraction, > 0. A loss (inelastic impacts on the grid, "
+                      "material leaving it) does not stop the run. A warning is "
+                      "printed once the drift either way exceeds 0.01 (or this "
+                      "limit if smaller).");
     prm.declare_entry("Allow outflow",
                       "false",
                       Patterns::Bool(),
@@ -198,6 +210,8 @@ namespace sable::mpm
                 "Solver/PIC fraction", p.pic_fraction, "the interval [0, 1]");
     check_input(p.energy_growth_limit > 1,
                 "Output/Energy growth limit", p.energy_growth_limit, "a number > 1");
+    check_input(p.energy_drift_limit > 0,
+                "Output/Energy drift limit", p.energy_drift_limit, "a number > 0");
     check_input(p.statistics_interval >= 1, "Output/Statistics interval", p.statistics_interval, "an integer >= 1");
     check_input(p.progress_interval >= 1, "Output/Progress interval", p.progress_interval, "an integer >= 1");
     check_input(!p.bodies.empty(), "Number of bodies", 0, "at least one body");
@@ -289,6 +303,7 @@ namespace sable::mpm
     p.statistics_interval = prm.get_integer("Statistics interval");
     p.progress_interval   = prm.get_integer("Progress interval");
     p.energy_growth_limit = prm.get_double("Energy growth limit");
+    p.energy_drift_limit  = prm.get_double("Energy drift limit");
     p.allow_outflow       = prm.get_bool("Allow outflow");
     prm.leave_subsection();
 

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <numeric>
 #include <sstream>
 
 namespace sable::mpm
@@ -226,9 +227,14 @@ namespace sable::mpm
     state.max_signal_speed = Utilities::MPI::max(max_speed, communicator);
     state.energy_floor     = 1e-14 * Utilities::MPI::sum(mass_wave_speed2, communicator);
 
-    const Statistics<dim> statistics = compute_statistics();
+    Statistics<dim> statistics   = compute_statistics();
     state.initial_energy         = statistics.kinetic_energy + statistics.strain_energy;
     state.initial_gravity_energy = statistics.gravity_energy;
+    state.resolved_energy        = std::accumulate(statistics.body_mass.begin(),
+                                            statistics.body_mass.end(),
+                                            0.) *
+                            parameters.gravity.norm() * grid.minimum_cell_size();
+    statistics.energy_drift = energy_drift(statistics);
 
     setup_output(false);
     statistics_file->write_row(0, 0., 0., 0., statistics);
@@ -538,12 +544,52 @@ namespace sable::mpm
   Statistics<dim>
   Simulator<dim>::compute_statistics() const
   {
-    return sable::mpm::compute_statistics(triangulation,
-                                          *particle_handler,
-                                          layout,
-                                          materials,
-                                          parameters.gravity,
-                                          contact ? &contact->get_model() : nullptr);
+    Statistics<dim> s = sable::mpm::compute_statistics(triangulation,
+                                                       *particle_handler,
+                                                       layout,
+                                                       materials,
+                                                       parameters.gravity,
+                                                       contact ? &contact->get_model() : nullptr);
+    s.wall_heat    = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
+    s.energy_drift     = energy_drift(s);
+    return s;
+  }
+
+  template <int dim>
+  double
+  Simulator<dim>::energy_drift(const Statistics<dim> &s) const
+  {
+    // at the start the dissipated energies and the boundary work are zero
+    const double balance = s.kinetic_energy + s.strain_energy + s.gravity_energy +
+                           s.plastic_work + s.wall_heat + s.contact_heat -
+                           state.boundary_work;
+    return (balance - state.initial_energy - state.initial_gravity_energy) /
+           std::max(state.energy_scale(s.gravity_energy), state.resolved_energy);
+  }
+
+  template <int dim>
+  Point<dim>
+  Simulator<dim>::fastest_point_location() const
+  {
+    double     fastest = -1;
+    Point<dim> where;
+    for (const auto &particle : *particle_handler)
+      {
+        double v2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          v2 += std::pow(particle.get_properties()[layout.velocity + d], 2);
+        if (v2 > fastest)
+          {
+            fastest = v2;
+            where   = particle.get_location();
+          }
+      }
+    const double       global_fastest = Utilities::MPI::max(fastest, communicator);
+    const unsigned int rank           = Utilities::MPI::min(
+      fastest == global_fastest ? Utilities::MPI::this_mpi_process(communicator) :
+                                  numbers::invalid_unsigned_int,
+      communicator);
+    return Utilities::MPI::broadcast(communicator, where, rank);
   }
 
   template <int dim>
@@ -561,28 +607,29 @@ namespace sable::mpm
                 << " exceeds 'Output/Energy growth limit' = "
                 << parameters.energy_growth_limit << " times the energy "
                 << "supplied (" << budget << ")";
-        // locate the fastest particle
-        double     fastest = -1;
-        Point<dim> where;
-        for (const auto &particle : *particle_handler)
-          {
-            double v2 = 0;
-            for (unsigned int d = 0; d < dim; ++d)
-              v2 += std::pow(particle.get_properties()[layout.velocity + d], 2);
-            if (v2 > fastest)
-              {
-                fastest = v2;
-                where   = particle.get_location();
-              }
-          }
-        const double global_fastest = Utilities::MPI::max(fastest, communicator);
-        const unsigned int rank = Utilities::MPI::min(
-          fastest == global_fastest ? Utilities::MPI::this_mpi_process(communicator) :
-                                      numbers::invalid_unsigned_int,
-          communicator);
-        where = Utilities::MPI::broadcast(communicator, where, rank);
-        message << "; fastest material point at " << to_string(where);
+        message << "; fastest material point at " << to_string(fastest_point_location());
         throw std::runtime_error(message.str());
+      }
+    // a gain is what an instability makes; losses (the grid's inelastic
+    // impacts, material leaving the grid) only warn
+    if (!(s.energy_drift <= parameters.energy_drift_limit))
+      {
+        std::ostringstream message;
+        message << "the run became unstable at step " << state.step_number << ", time "
+                << std::setprecision(10) << state.time << ": the energy balance gained "
+                << s.energy_drift << " of the energy the scene can hold, beyond "
+                << "'Output/Energy drift limit' = " << parameters.energy_drift_limit
+                << " (statistics.csv, column energy_drift); fastest material point at "
+                << to_string(fastest_point_location());
+        throw std::runtime_error(message.str());
+      }
+    if (std::abs(s.energy_drift) > std::min(0.01, parameters.energy_drift_limit) && !drift_warned)
+      {
+        drift_warned = true;
+        pcout << "warning: the energy balance drifts by " << std::setprecision(3)
+              << 100 * s.energy_drift << "% at step " << state.step_number << ", time "
+              << state.time << " (statistics.csv, column energy_drift)" << std::setprecision(6)
+              << std::endl;
       }
   }
 

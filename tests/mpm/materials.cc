@@ -15,6 +15,10 @@
 //     d sigma_11 / d eps = K + 4/3 G H / (3 G + H) (plastic) and K + 4/3 G
 //     (elastic), step by step (1e-8: the step differences lose about
 //     |sigma| / |d sigma| ~ 1e4 of the 1e-16 precision).
+//     The plastic work (plastic_work_density) equals the stress work
+//     int sigma_11 d eps, by the trapezoidal rule (exact on the straight
+//     pieces of the path; the one step that crosses yield errs by
+//     ~1/n_steps^2), less the stored elastic energy: 1e-5 relative.
 // (b) neo-Hookean: sigma(I) = 0, W(I) = 0; the Kirchhoff stress J sigma
 //     equals dW/dF F^T by central differences of strain_energy_density at
 //     random F with det F > 0 (1e-6; truncation ~h^2 = 1e-12, round-off
@@ -127,6 +131,7 @@ namespace
            max_plastic_slope_error = 0, max_hardening_error = 0;
     unsigned int n_elastic = 0, n_plastic = 0, n_crossing = 0;
     bool         elastic_before_yield = true;
+    double       stress_work          = 0;
     for (unsigned int n = 0; n < n_steps; ++n)
       {
         const double eps_old = rate * dt * n, eps = rate * dt * (n + 1);
@@ -136,6 +141,7 @@ namespace
         Tensor<2, 3> F = unit_symmetric_tensor<3>();
         F[0][0] += eps;
         material->update_stress(L, F, dt, stress, history);
+        stress_work += 0.5 * (old_stress[0][0] + stress[0][0]) * (eps - eps_old);
 
         // analytic state
         const double plastic = std::max(0., 2. * G * (std::abs(eps) - eps_y) / (3. * G + H));
@@ -192,6 +198,12 @@ namespace
                    max_plastic_slope_error, 0., 1e-8, 1.);
     check_relative(name + "final eps_p", history[0],
                    2. * G * (std::abs(rate * dt * n_steps) - eps_y) / (3. * G + H), 1e-10);
+    const double elastic_energy =
+      material->strain_energy_density(stress, unit_symmetric_tensor<3>());
+    check_relative(name + "plastic work = stress work - elastic energy",
+                   material->plastic_work_density(history),
+                   stress_work - elastic_energy,
+                   1e-5);
   }
 
   // ---------------------------------------------------------------- (b)

@@ -89,6 +89,9 @@ namespace sable::mpm
     /// Stop when kinetic + strain energy exceeds this factor times the
     /// largest energy the scene could hold (see doc/mpm.md, RunState::energy_budget()).
     double energy_growth_limit = 10.;
+    /// Stop when the energy balance gains more than this fraction of that
+    /// energy (Statistics::energy_drift).
+    double energy_drift_limit = 0.5;
     /// Allow particles to leave the grid (they are removed and counted).
     bool allow_outflow = false;
 

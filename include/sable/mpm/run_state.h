@@ -28,6 +28,9 @@ namespace sable::mpm
     double initial_gravity_energy = 0;
     /// 1e-14 sum m c^2: energies below it are round-off
     double energy_floor = 0;
+    /// the gravitational energy of all the mass over one cell height: the
+    /// energy a discretisation resolves, below which a drift is not judged
+    double resolved_energy = 0;
     /// the largest release of gravitational energy so far
     double largest_gravity_release = 0;
 
@@ -49,8 +52,17 @@ namespace sable::mpm
     {
       largest_gravity_release =
         std::max(largest_gravity_release, initial_gravity_energy - gravity_energy);
-      return initial_energy + largest_gravity_release + std::max(boundary_work, 0.) +
-             energy_floor;
+      return energy_scale(gravity_energy);
+    }
+
+    /// energy_budget() without recording the release: the scale of the
+    /// energy balance.
+    double
+    energy_scale(const double gravity_energy) const
+    {
+      return initial_energy +
+             std::max(largest_gravity_release, initial_gravity_energy - gravity_energy) +
+             std::max(boundary_work, 0.) + energy_floor;
     }
 
     template <class Archive>
@@ -59,7 +71,7 @@ namespace sable::mpm
     {
       ar &time &time_step &step_number &max_signal_speed;
       ar &boundary_work &initial_energy &initial_gravity_energy &energy_floor &
-        largest_gravity_release;
+        largest_gravity_release &resolved_energy;
       ar &next_output_time &output_counter;
       ar &adaptations_without_change &travel_since_adaptation;
     }

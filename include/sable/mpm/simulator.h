@@ -272,9 +272,19 @@ namespace sable::mpm
     /// Particle output, with the contact nodes and the grid if asked for.
     void
     write_particles();
-    /// Stop if kinetic + strain energy exceed the energy guard's limit.
+    /// Stop if kinetic + strain energy exceed the energy guard's limit or
+    /// the energy balance drifts beyond its limit; warn once when the
+    /// balance drifts by more than 1%.
     void
     check_energy(const Statistics<dim> &statistics);
+    /// Statistics::energy_drift of @p statistics.
+    double
+    energy_drift(const Statistics<dim> &statistics) const;
+    /// Where the fastest material point is, on every rank (for messages).
+    Point<dim>
+    fastest_point_location() const;
+    /// Whether the drift warning was printed.
+    bool drift_warned = false;
     /// Stop all ranks if any flagged a problem at @p location.
     void
     report_failure(const bool         failed_here,

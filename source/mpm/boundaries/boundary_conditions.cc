@@ -112,6 +112,34 @@ namespace sable::mpm
 
   template <int dim>
   double
+  BoundaryConditions<dim>::apply_one_counting(const NodeConstraint &c,
+                                              double *              v,
+                                              const double          mass,
+                                              double &              heat) const
+  {
+    const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
+    Tensor<1, dim>                 before, wall_velocity;
+    for (unsigned int d = 0; d < dim; ++d)
+      before[d] = v[d];
+    if (wall.type == BoundaryType::moving)
+      wall_velocity = wall.velocity;
+    const double result = apply_one(c, v, false, -1.);
+    Tensor<1, dim> change;
+    for (unsigned int d = 0; d < dim; ++d)
+      change[d] = v[d] - before[d];
+    // the work of the wall's force m dv/dt against the node's velocity
+    // relative to the wall after the step, as friction heat is counted
+    // (Nairn, Bardenhagen & Smith 2018): zero where the wall holds the node,
+    // the friction force times the slip left on a sliding node
+    Tensor<1, dim> after;
+    for (unsigned int d = 0; d < dim; ++d)
+      after[d] = v[d];
+    heat = -mass * (change * (after - wall_velocity));
+    return result;
+  }
+
+  template <int dim>
+  double
   BoundaryConditions<dim>::apply(std::vector<double> &      velocity,
                                  const std::vector<double> &mass,
                                  const unsigned int         n_owned_nodes)
@@ -119,6 +147,7 @@ namespace sable::mpm
     double work = 0;
     in_contact.assign(constraints.size(), -1.);
     out_of_reach.assign(constraints.size(), false);
+    last_heat.assign(constraints.size(), 0.);
     for (unsigned int i = 0; i < constraints.size(); ++i)
       {
         const NodeConstraint &c = constraints[i];
@@ -142,7 +171,9 @@ namespace sable::mpm
                 continue;
               }
           }
-        in_contact[i] = apply_one(c, v, false, -1.);
+        in_contact[i] = apply_one_counting(c, v, mass[c.node], last_heat[i]);
+        if (c.node < n_owned_nodes)
+          frictional_heat += last_heat[i];
       }
     return work;
   }
@@ -178,17 +209,30 @@ namespace sable::mpm
 
   template <int dim>
   void
-  BoundaryConditions<dim>::apply_to_bodies(BodyFields<dim> &fields,
-                                           const bool       remapped) const
+  BoundaryConditions<dim>::apply_to_bodies(BodyFields<dim> &  fields,
+                                           const bool         remapped,
+                                           const unsigned int n_owned_nodes)
   {
     for (unsigned int i = 0; i < constraints.size(); ++i)
       if (fields.is_contact_node(constraints[i].node) &&
           !(i < out_of_reach.size() && out_of_reach[i]))
         {
+          const bool counted = !remapped && constraints[i].node < n_owned_nodes;
+          if (counted)
+            frictional_heat -= last_heat[i];
           const auto [begin, end] = fields.node_records(constraints[i].node);
           for (auto *r = begin; r != end; ++r)
             if (r->mass > 0.)
-              apply_one(constraints[i], &r->new_velocity[0], remapped, in_contact[i]);
+              {
+                if (!counted)
+                  apply_one(constraints[i], &r->new_velocity[0], remapped, in_contact[i]);
+                else
+                  {
+                    double heat = 0;
+                    apply_one_counting(constraints[i], &r->new_velocity[0], r->mass, heat);
+                    frictional_heat += heat;
+                  }
+              }
         }
   }
 

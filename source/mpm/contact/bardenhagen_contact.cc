@@ -378,11 +378,14 @@ namespace sable::mpm
           continue;
         defect += r.mass * scale * change[a];
         sums.momentum_correction += r.mass * scale * change[a].norm();
-        // frictional work: the tangential impulse m tau times the slip
-        // speed left after it, |dv_t| - tau (zero while sticking); at
-        // a two-body node the sum over both bodies is the impulse times
-        // the relative slip speed (only in the pass whose changes reach
-        // the particles)
+        // frictional work (Nairn, Bardenhagen & Smith 2018): the
+        // tangential impulse m tau times the slip speed left after it,
+        // |dv_t| - tau (zero while sticking); at a two-body node the sum
+        // over both bodies is the impulse times the relative slip speed
+        // (only in the pass whose changes reach the particles). The normal
+        // impulse does no work: it leaves no relative normal velocity, or
+        // (impulse scaling) only an approach that the bodies' stresses
+        // then take up.
         const double tau = scale * tangential_change[a];
         if (record_forces)
           sums.frictional_heat += r.mass * tau * (tangential_speed[a] - tau);

@@ -65,7 +65,7 @@ namespace sable::mpm
   template <GridPass pass>
   void
   MultiBodyContact<dim>::correct_velocities(const Grid<dim> &              grid,
-                                            const BoundaryConditions<dim> &boundary_conditions,
+                                            BoundaryConditions<dim> &      boundary_conditions,
                                             const Tensor<1, dim> &         gravity,
                                             const double                   time_step,
                                             const unsigned int             n_owned_nodes)
@@ -104,17 +104,17 @@ namespace sable::mpm
                   momentum_update,
                   grid.triangulation.get_communicator());
     if (!boundary_conditions.empty())
-      boundary_conditions.apply_to_bodies(fields, !momentum_update);
+      boundary_conditions.apply_to_bodies(fields, !momentum_update, n_owned_nodes);
   }
 
   template class MultiBodyContact<2>;
   template class MultiBodyContact<3>;
   template void MultiBodyContact<2>::correct_velocities<GridPass::momentum_update>(
-    const Grid<2> &, const BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
+    const Grid<2> &, BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
   template void MultiBodyContact<2>::correct_velocities<GridPass::remapped_momenta>(
-    const Grid<2> &, const BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
+    const Grid<2> &, BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
   template void MultiBodyContact<3>::correct_velocities<GridPass::momentum_update>(
-    const Grid<3> &, const BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
+    const Grid<3> &, BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
   template void MultiBodyContact<3>::correct_velocities<GridPass::remapped_momenta>(
-    const Grid<3> &, const BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
+    const Grid<3> &, BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
 } // namespace sable::mpm

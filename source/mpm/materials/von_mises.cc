@@ -78,4 +78,15 @@ namespace sable::mpm
   {
     return complementary_energy(stress) * determinant(F);
   }
+
+  double
+  VonMises::plastic_work_density(const double *history) const
+  {
+    // integral of the yield stress over the equivalent plastic strain (the
+    // flow is isochoric, so per reference or current volume alike up to the
+    // elastic volume change)
+    const double plastic_strain = history[0];
+    return (parameters.yield_stress + 0.5 * parameters.hardening_modulus * plastic_strain) *
+           plastic_strain;
+  }
 } // namespace sable::mpm

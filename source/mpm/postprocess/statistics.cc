@@ -29,6 +29,9 @@ namespace sable::mpm
     add("strain_energy", [](const Row &r) { return r.statistics.strain_energy; });
     add("gravity_energy", [](const Row &r) { return r.statistics.gravity_energy; });
     add("boundary_work", [](const Row &r) { return r.boundary_work; });
+    add("plastic_work", [](const Row &r) { return r.statistics.plastic_work; });
+    add("wall_heat", [](const Row &r) { return r.statistics.wall_heat; });
+    add("energy_drift", [](const Row &r) { return r.statistics.energy_drift; });
     for (unsigned int d = 0; d < dim; ++d)
       add("momentum_" + axes.substr(d, 1), [d](const Row &r) { return r.statistics.momentum[d]; });
     for (unsigned int b = 0; b < n_bodies; ++b)
@@ -92,11 +95,12 @@ namespace sable::mpm
   {
     const MPI_Comm communicator = triangulation.get_communicator();
     const unsigned int n_bodies = materials.size();
-    // kinetic, strain, gravity, momentum (dim), per body: mass, m x, m v
-    // per body: mass, m x (dim), m v (dim), angular momentum about the
-    // origin (3), inertia tensor about the origin (9)
+    // kinetic, strain, gravity, plastic work, momentum (dim), then per
+    // body: mass, m x (dim), m v (dim), angular momentum about the origin
+    // (3), inertia tensor about the origin (9)
+    constexpr unsigned int n_global = 4 + dim;
     constexpr unsigned int per_body = 1 + 2 * dim + 3 + 9;
-    const unsigned int     n_values = 3 + dim + n_bodies * per_body;
+    const unsigned int     n_values = n_global + n_bodies * per_body;
     std::vector<double>    sums(n_values, 0.);
     for (const auto &particle : particle_handler)
       {
@@ -113,12 +117,14 @@ namespace sable::mpm
                      ParticleLayout<dim>::stress_tensor(props),
                      embed_in_3d<dim>(ParticleLayout<dim>::deformation_gradient(props), 1.));
         sums[2] -= mass * (gravity * x);
-        double *const body_sums = &sums[3 + dim + body * per_body];
+        sums[3] += props[layout.initial_volume] *
+                   materials[body]->plastic_work_density(props.data() + layout.history);
+        double *const body_sums = &sums[n_global + body * per_body];
         body_sums[0] += mass;
         Tensor<1, 3> r, v;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            sums[3 + d] += mass * props[layout.velocity + d];
+            sums[4 + d] += mass * props[layout.velocity + d];
             body_sums[1 + d] += mass * x[d];
             body_sums[1 + dim + d] += mass * props[layout.velocity + d];
             r[d] = x[d];
@@ -137,11 +143,12 @@ namespace sable::mpm
     s.kinetic_energy = sums[0];
     s.strain_energy  = sums[1];
     s.gravity_energy = sums[2];
+    s.plastic_work   = sums[3];
     for (unsigned int d = 0; d < dim; ++d)
-      s.momentum[d] = sums[3 + d];
+      s.momentum[d] = sums[4 + d];
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        const double *const body_sums = &sums[3 + dim + b * per_body];
+        const double *const body_sums = &sums[n_global + b * per_body];
         const double        mass      = body_sums[0];
         s.body_mass.push_back(mass);
         Point<dim>     x;

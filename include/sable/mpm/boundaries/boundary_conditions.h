@@ -70,9 +70,19 @@ namespace sable::mpm
                       const std::vector<double> &mass) const;
 
     /// Apply the conditions to every body's velocity at contact nodes,
-    /// after apply() (@p remapped: as apply_to_remapped()).
+    /// after apply() (@p remapped: as apply_to_remapped()). After the
+    /// momentum update, the bodies' velocities, which reach the particles,
+    /// replace the single field's in frictional_heat at these nodes.
     void
-    apply_to_bodies(BodyFields<dim> &fields, const bool remapped) const;
+    apply_to_bodies(BodyFields<dim> &  fields,
+                    const bool         remapped,
+                    const unsigned int n_owned_nodes);
+
+    /// Friction heat of the walls so far, the work of their forces
+    /// against the nodes' velocities relative to them after the correction,
+    /// -sum m (v' - v) . (v' - v_wall) over the momentum updates (this
+    /// rank's owned nodes): wall friction on sliding nodes.
+    double frictional_heat = 0;
 
     bool
     has_moving_walls() const
@@ -109,6 +119,14 @@ namespace sable::mpm
               const bool            remapped,
               const double          held) const;
 
+    /// apply_one() after a momentum update, returning the energy it
+    /// dissipated at a node of mass @p mass in @p dissipation.
+    double
+    apply_one_counting(const NodeConstraint &c,
+                       double *              v,
+                       const double          mass,
+                       double &              dissipation) const;
+
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
     std::vector<NodeConstraint>                            constraints;
     /// per constraint: fraction of tangential velocity a friction wall
@@ -116,6 +134,8 @@ namespace sable::mpm
     std::vector<double> in_contact;
     /// per constraint: excluded by the material check in the last apply()
     std::vector<bool> out_of_reach;
+    /// per constraint: what it added to frictional_heat in the last apply()
+    std::vector<double> last_heat;
     const double *    material_extent = nullptr;
     double            extent_time_step = 0.;
   };

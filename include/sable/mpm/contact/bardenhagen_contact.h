@@ -60,7 +60,8 @@ namespace sable::mpm
           const bool                         record_forces,
           const MPI_Comm                     communicator = MPI_COMM_SELF);
 
-    /// Frictional work converted to heat so far (this rank's nodes).
+    /// Frictional work converted to heat so far, the friction impulses
+    /// times the slip they leave (this rank's nodes; Statistics::contact_heat).
     double frictional_heat = 0;
     /// Momentum the corrections did not conserve, sum over nodes of
     /// |sum_a m_a dv_a| (non-zero only at nodes with three or more bodies),

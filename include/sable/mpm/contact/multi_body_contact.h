@@ -114,7 +114,7 @@ namespace sable::mpm
     template <GridPass pass>
     void
     correct_velocities(const Grid<dim> &              grid,
-                       const BoundaryConditions<dim> &boundary_conditions,
+                       BoundaryConditions<dim> &      boundary_conditions,
                        const Tensor<1, dim> &         gravity,
                        const double                   time_step,
                        const unsigned int             n_owned_nodes);

@@ -105,6 +105,14 @@ namespace sable::mpm
     strain_energy_density(const SymmetricTensor<2, 3> &stress,
                           const Tensor<2, 3> &         F) const = 0;
 
+    /// Work dissipated by plastic flow so far per unit reference volume,
+    /// from a point's history (zero for elastic models).
+    virtual double
+    plastic_work_density(const double * /*history*/) const
+    {
+      return 0.;
+    }
+
     double
     density() const
     {

@@ -38,6 +38,9 @@ namespace sable::mpm
     double
     strain_energy_density(const SymmetricTensor<2, 3> &stress,
                           const Tensor<2, 3> &         F) const override;
+
+    double
+    plastic_work_density(const double *history) const override;
   };
 } // namespace sable::mpm
 

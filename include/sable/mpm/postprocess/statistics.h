@@ -11,6 +11,7 @@
 
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +28,20 @@ namespace sable::mpm
     double                      strain_energy  = 0;
     /// -sum_p m_p g . x_p
     double                      gravity_energy = 0;
+    /// work dissipated by plastic flow so far
+    double                      plastic_work = 0;
+    /// friction heat of the walls so far (BoundaryConditions::frictional_heat)
+    double                      wall_heat = 0;
+    /**
+     * The energy balance: kinetic + strain + gravitational energy + plastic
+     * work + wall and contact heat - boundary work, less its value at the
+     * start, over the energy the scene can hold (RunState::energy_scale(),
+     * at least the energy of all the mass over one cell height).
+     * What remains is the discretisation's own gain or loss: the transfers'
+     * (e.g. PIC's damping), the impacts on the grid nodes; NaN if not
+     * computed.
+     */
+    double                      energy_drift = std::numeric_limits<double>::quiet_NaN();
     Tensor<1, dim>              momentum;
     std::vector<double>         body_mass;
     std::vector<Point<dim>>     body_position;
@@ -36,8 +51,9 @@ namespace sable::mpm
     unsigned long long          n_particles = 0;
     /// active cells of the background grid (changes with adaptive meshes)
     unsigned long long          n_cells = 0;
-    /// frictional work of contact so far, and the last contact force per
-    /// reported pair (empty without contact)
+    /// frictional work of contact so far
+    /// (BardenhagenContact::frictional_heat), and the last contact force
+    /// per reported pair (empty without contact)
     double                      contact_heat = 0;
     std::vector<Tensor<1, dim>> pair_forces;
   };
