@@ -9,6 +9,8 @@
 // to the size of the corrections; see doc/benchmarks.md.
 //
 // Usage: contact_scaling [cells per direction = 256] [steps = 40]
+//                        [pairwise (default) | centre-of-mass]
+// (the treatment of nodes with three or more bodies)
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
@@ -20,6 +22,7 @@
 #include <iomanip>
 #include <iostream>
 #include <random>
+#include <string>
 
 using namespace dealii;
 using namespace sable::mpm;
@@ -30,6 +33,7 @@ namespace
   seconds_per_step(const unsigned int n_cells,
                    const unsigned int n_grains_per_side,
                    const ContactParameters::Model model,
+                   const ContactParameters::MultiBodyNodes multi_body_nodes,
                    const unsigned int n_steps,
                    unsigned long long &n_particles,
                    double &            momentum_defect)
@@ -47,6 +51,7 @@ namespace
     parameters.print_timings    = false;
     parameters.contact.model    = model;
     parameters.contact.friction = 0.3;
+    parameters.contact.multi_body_nodes = multi_body_nodes;
     for (unsigned int b = 0; b < 4; ++b)
       parameters.boundaries[b].type = BoundaryType::slip;
 
@@ -87,6 +92,9 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const unsigned int n_cells = argc > 1 ? std::stoi(argv[1]) : 256;
   const unsigned int n_steps = argc > 2 ? std::stoi(argv[2]) : 40;
+  const auto         multi_body_nodes = argc > 3 && std::string(argv[3]) == "centre-of-mass" ?
+                                          ContactParameters::MultiBodyNodes::centre_of_mass :
+                                          ContactParameters::MultiBodyNodes::pairwise;
   std::cout << "| grains | material points | contact none, s/step | bardenhagen 2001, s/step | "
                "contact / none | momentum defect / correction |\n|---|---|---|---|---|---|"
             << std::endl;
@@ -95,9 +103,14 @@ main(int argc, char **argv)
       unsigned long long n_particles = 0;
       double             defect      = 0;
       const double none = seconds_per_step(n_cells, per_side, ContactParameters::Model::none,
-                                           n_steps, n_particles, defect);
-      const double with_contact = seconds_per_step(
-        n_cells, per_side, ContactParameters::Model::bardenhagen_2001, n_steps, n_particles, defect);
+                                           multi_body_nodes, n_steps, n_particles, defect);
+      const double with_contact = seconds_per_step(n_cells,
+                                                   per_side,
+                                                   ContactParameters::Model::bardenhagen_2001,
+                                                   multi_body_nodes,
+                                                   n_steps,
+                                                   n_particles,
+                                                   defect);
       std::cout << "| " << per_side * per_side << " | " << n_particles << " | " << std::fixed
                 << std::setprecision(4) << none << " | " << with_contact << " | "
                 << std::setprecision(2) << with_contact / none << " | " << std::scientific

@@ -284,20 +284,17 @@ namespace sable::mpm
         node_acts = approach > 0 || mean_traction < 0;
         if (node_acts && begin[0].mass > 0 && begin[1].mass > 0 &&
             parameters.detection == ContactParameters::Detection::surface_position)
-          {
-            // the surfaces meet within the step if the centroids' distance
-            // along the normal, less what the bodies close in dt, is at most
-            // the distance they have when touching
-            const Tensor<1, dim> between = begin[1].mass_position / begin[1].mass -
-                                           begin[0].mass_position / begin[0].mass;
-            double cell = 0;
-            for (unsigned int d = 0; d < dim; ++d)
-              cell += std::pow(normal[0][d] * spacing[d], 2);
-            const double closing  = (begin[0].new_velocity - begin[1].new_velocity) * normal[0];
-            const double touching = (surface_offset[begin[0].body] + surface_offset[begin[1].body]) *
-                                    std::sqrt(cell);
-            node_acts = between * normal[0] - dt * std::max(closing, 0.) <= touching;
-          }
+          node_acts = surfaces_meet(begin[0],
+                                    begin[1],
+                                    normal[0],
+                                    (begin[0].new_velocity - begin[1].new_velocity) * normal[0],
+                                    spacing,
+                                    dt);
+      }
+    else if (parameters.multi_body_nodes == ContactParameters::MultiBodyNodes::pairwise)
+      {
+        apply_pairwise_at_node(begin, end, spacing, dt, owned, record_forces, measure, scratch, sums);
+        return;
       }
 
     double rate = 0;
@@ -403,6 +400,170 @@ namespace sable::mpm
       }
     if (owned)
       sums.momentum_defect += defect.norm();
+  }
+
+  template <int dim>
+  bool
+  BardenhagenContact<dim>::surfaces_meet(const typename BodyFields<dim>::Record &a,
+                                         const typename BodyFields<dim>::Record &b,
+                                         const Tensor<1, dim> &                  normal,
+                                         const double                            closing,
+                                         const Tensor<1, dim> &                  spacing,
+                                         const double                            dt) const
+  {
+    // the surfaces meet within the step if the centroids' distance along
+    // the normal, less what the bodies close in dt, is at most the distance
+    // they have when touching
+    const Tensor<1, dim> between = b.mass_position / b.mass - a.mass_position / a.mass;
+    double               cell    = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      cell += std::pow(normal[d] * spacing[d], 2);
+    const double touching = (surface_offset[a.body] + surface_offset[b.body]) * std::sqrt(cell);
+    return between * normal - dt * std::max(closing, 0.) <= touching;
+  }
+
+  template <int dim>
+  void
+  BardenhagenContact<dim>::apply_pairwise_at_node(typename BodyFields<dim>::Record *begin,
+                                                  typename BodyFields<dim>::Record *end,
+                                                  const Tensor<1, dim> &            spacing,
+                                                  const double                      dt,
+                                                  const bool                        owned,
+                                                  const bool                        record_forces,
+                                                  const bool                        measure,
+                                                  Scratch &                         scratch,
+                                                  ChunkSums &                       sums) const
+  {
+    using Record = typename BodyFields<dim>::Record;
+    const unsigned int n        = end - begin;
+    auto &             normal   = scratch.normal;
+    auto &             velocity = scratch.own;
+    auto &             change   = scratch.change;
+    auto &             slipping = scratch.slipping;
+    auto &             pairs    = scratch.pairs;
+    normal.resize(n);
+    velocity.resize(n);
+    change.resize(n);
+    slipping.assign(n, false);
+    pairs.clear();
+    double total_mass = 0;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        const double norm = begin[a].mass_gradient.norm();
+        normal[a]   = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
+        velocity[a] = begin[a].new_velocity;
+        total_mass += begin[a].mass;
+      }
+
+    // each pair in turn as at a two-body node, on the velocities the pairs
+    // before it left: equal and opposite impulses, so momentum is kept
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int b = a + 1; b < n; ++b)
+        {
+          const Record &ra = begin[a], &rb = begin[b];
+          if (ra.mass <= 0 || rb.mass <= 0)
+            continue;
+          const auto weight = [&](const Record &r) {
+            return parameters.normals == ContactParameters::Normals::average ? 1. : r.mass;
+          };
+          Tensor<1, dim> common = weight(ra) * normal[a] - weight(rb) * normal[b];
+          if (parameters.normals == ContactParameters::Normals::largest_mass)
+            common = ra.mass >= rb.mass ? normal[a] : Tensor<1, dim>(-normal[b]);
+          const double norm = common.norm();
+          if (norm == 0)
+            continue;
+          common /= norm;
+          const double         pair_mass = ra.mass + rb.mass;
+          const Tensor<1, dim> dv = (rb.mass / pair_mass) * (velocity[a] - velocity[b]);
+          const double         dv_n = dv * common;
+          bool                 acts = dv_n > 0;
+          if (use_traction && !acts)
+            acts = (common * (ra.mass_stress * common) + common * (rb.mass_stress * common)) /
+                     pair_mass <
+                   0;
+          if (acts && parameters.detection == ContactParameters::Detection::surface_position)
+            acts = surfaces_meet(ra, rb, common, (velocity[a] - velocity[b]) * common, spacing, dt);
+          if (!acts)
+            continue;
+          const double mu =
+            parameters.friction_between(body_groups[ra.body], body_groups[rb.body]);
+          const CoulombCorrection<dim> correction = coulomb_correction(dv, common, mu);
+          Tensor<1, dim>               change_a   = correction.change;
+          double                       tau        = correction.tangential_change;
+          if (use_traction && std::isfinite(mu))
+            {
+              const std::pair<unsigned int, unsigned int> pair(ra.body, rb.body);
+              if (measure && owned)
+                sums.pair_impulses.push_back({pair, ra.mass * dv_n, ra.mass * tau});
+              const auto capped =
+                !measure && tau > 0 ? friction_scale.find(pair) : friction_scale.end();
+              if (capped != friction_scale.end())
+                {
+                  const Tensor<1, dim> normal_part = -dv_n * common;
+                  change_a = normal_part + capped->second * (change_a - normal_part);
+                  tau *= capped->second;
+                }
+            }
+          velocity[a] += change_a;
+          velocity[b] -= (ra.mass / rb.mass) * change_a;
+          // the friction impulse m_a tau times the relative slip left,
+          // (M / m_b)(|dv_t| - tau), per unit impulse scale
+          pairs.push_back({a, b, change_a, tau, correction.tangential_speed,
+                           ra.mass * pair_mass / rb.mass});
+          if (tau < correction.tangential_speed)
+            slipping[a] = slipping[b] = true;
+        }
+    if (measure)
+      return;
+
+    // one impulse scale for the node (paper 002 section 2.2), so that
+    // momentum stays kept
+    double rate = 0;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        change[a] = velocity[a] - begin[a].new_velocity;
+        if (begin[a].mass <= 0)
+          continue;
+        const double mass_ratio =
+          std::max(begin[a].mass / std::max(total_mass - begin[a].mass,
+                                            std::numeric_limits<double>::min()),
+                   1.);
+        for (unsigned int d = 0; d < dim; ++d)
+          rate = std::max(rate, mass_ratio * std::abs(change[a][d]) / spacing[d]);
+      }
+    double scale = 1;
+    if (parameters.impulse_scaling > 0 && rate * dt > parameters.impulse_scaling)
+      scale = parameters.impulse_scaling / (rate * dt);
+
+    Tensor<1, dim> defect;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        Record &r = begin[a];
+        r.new_velocity += scale * change[a];
+        if (record_forces)
+          {
+            r.normal        = normal[a];
+            r.contact_force = r.mass * scale * change[a] / dt;
+            r.state         = change[a].norm() == 0 ? 0 : slipping[a] ? 2 : 1;
+          }
+        if (owned)
+          {
+            defect += r.mass * scale * change[a];
+            sums.momentum_correction += r.mass * scale * change[a].norm();
+          }
+      }
+    if (!owned)
+      return;
+    sums.momentum_defect += defect.norm();
+    if (record_forces)
+      for (const auto &pair : pairs)
+        {
+          const double tau = scale * pair.tau;
+          sums.frictional_heat += pair.heat_mass * tau * (pair.slip_speed - tau);
+          const unsigned int index = pair_index(begin[pair.a].body, begin[pair.b].body);
+          if (index != BodyFields<dim>::invalid)
+            sums.pair_forces[index] += begin[pair.a].mass * scale * pair.change / dt;
+        }
   }
 
   template class BardenhagenContact<2>;

@@ -21,6 +21,9 @@ namespace sable::mpm
     const NamedChoice<ContactParameters::Detection> detections{
       {"shared nodes", ContactParameters::Detection::shared_nodes},
       {"surface position", ContactParameters::Detection::surface_position}};
+    const NamedChoice<ContactParameters::MultiBodyNodes> multi_body_methods{
+      {"pairwise", ContactParameters::MultiBodyNodes::pairwise},
+      {"centre of mass", ContactParameters::MultiBodyNodes::centre_of_mass}};
   } // namespace
 
   void
@@ -60,6 +63,16 @@ namespace sable::mpm
                       "distance between the bodies' mass centroids at the "
                       "node, along the normal, shows that their surfaces "
                       "meet within the step (see doc/mpm.md).");
+    prm.declare_entry("Nodes with three or more bodies",
+                      "pairwise",
+                      multi_body_methods.pattern(),
+                      "Contact at a node that three or more bodies share. "
+                      "'pairwise': each pair of bodies in turn (in the order "
+                      "of their numbers), as at a two-body node, with equal "
+                      "and opposite impulses, so momentum is kept to round-off. "
+                      "'centre of mass': each body against the centre of mass "
+                      "of all, with its own normal turned away from the "
+                      "others' (earlier versions; momentum is not exactly kept).");
     prm.declare_entry("Friction coefficient",
                       "0",
                       Patterns::Anything(),
@@ -96,6 +109,7 @@ namespace sable::mpm
     c.model                 = models.value(prm.get("Model"));
     c.normals               = normal_methods.value(prm.get("Normals"));
     c.detection             = detections.value(prm.get("Detection"));
+    c.multi_body_nodes = multi_body_methods.value(prm.get("Nodes with three or more bodies"));
     c.friction = parse_friction(prm.get("Friction coefficient"), "Contact/Friction coefficient");
     for (const auto &[pair, value] : split_map(prm.get("Group friction")))
       {

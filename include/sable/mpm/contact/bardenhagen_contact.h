@@ -19,10 +19,12 @@ namespace sable::mpm
    * - normals from the mass gradients; at a two-body node one common normal
    *   n = (w1 n1 - w2 n2)/|w1 n1 - w2 n2| so that contact conserves
    *   momentum exactly, with w the nodal masses (default) or 1 (papers);
-   *   at nodes with three or more bodies each body keeps its own normal,
-   *   made to point away from the mass-weighted mean of the others', and is
-   *   corrected against the all-body centre of mass (this leaves a small
-   *   momentum error, reported by the dense-pack benchmark);
+   *   at nodes with three or more bodies each pair of bodies in turn as at
+   *   a two-body node, with equal and opposite impulses (momentum kept to
+   *   round-off), or ('centre of mass') each body with its own normal, made
+   *   to point away from the mass-weighted mean of the others', against the
+   *   all-body centre of mass (a momentum error, reported by the dense-pack
+   *   benchmark);
    * - release: 2000 acts while the bodies approach; 2001 also while the
    *   mass-weighted normal traction at the node is compressive;
    * - Coulomb friction with mu' = min(mu, |dv_t|/|dv_n|), mu = infinity
@@ -99,6 +101,16 @@ namespace sable::mpm
     {
       std::vector<Tensor<1, dim>> normal, change, own;
       std::vector<double>         tangential_speed, tangential_change;
+      std::vector<bool>           slipping;
+      /// pairwise contact: the change of the pair's first body and the
+      /// pair's heat per unit scale
+      struct PairChange
+      {
+        unsigned int   a, b;
+        Tensor<1, dim> change;
+        double         tau, slip_speed, heat_mass;
+      };
+      std::vector<PairChange> pairs;
     };
 
     /// Contact nodes per chunk of the threaded loop; fixed, so that the
@@ -117,6 +129,30 @@ namespace sable::mpm
                   const bool                        measure,
                   Scratch &                         scratch,
                   ChunkSums &                       sums) const;
+
+    /// apply_at_node() at a node of three or more bodies with
+    /// 'Nodes with three or more bodies = pairwise'.
+    void
+    apply_pairwise_at_node(typename BodyFields<dim>::Record *begin,
+                           typename BodyFields<dim>::Record *end,
+                           const Tensor<1, dim> &            spacing,
+                           const double                      dt,
+                           const bool                        owned,
+                           const bool                        record_forces,
+                           const bool                        measure,
+                           Scratch &                         scratch,
+                           ChunkSums &                       sums) const;
+
+    /// With 'Detection = surface position': whether the surfaces of the
+    /// bodies of @p a and @p b, closing at @p closing along @p normal (out
+    /// of a), meet within the step.
+    bool
+    surfaces_meet(const typename BodyFields<dim>::Record &a,
+                  const typename BodyFields<dim>::Record &b,
+                  const Tensor<1, dim> &                  normal,
+                  const double                            closing,
+                  const Tensor<1, dim> &                  spacing,
+                  const double                            dt) const;
 
     /// Run apply_at_node() over all contact nodes, chunk by chunk.
     void

@@ -48,6 +48,17 @@ namespace sable::mpm
       surface_position
     };
     Detection detection = Detection::shared_nodes;
+    /// Contact at nodes that three or more bodies share.
+    enum class MultiBodyNodes
+    {
+      /// each pair of bodies in turn, as at a two-body node, with equal and
+      /// opposite impulses: momentum is kept to round-off
+      pairwise,
+      /// each body against the centre of mass of all, with its own normal
+      /// turned away from the others' (momentum not exactly kept)
+      centre_of_mass
+    };
+    MultiBodyNodes multi_body_nodes = MultiBodyNodes::pairwise;
     /// Coulomb coefficient for pairs of groups not listed below;
     /// infinity means sticking contact.
     double                                                  friction = 0.;
