@@ -77,6 +77,21 @@ namespace sable::mpm
                       "counting a cell as 1 and a material point as 6 (the "
                       "costs measured in doc/benchmarks.md), instead of the "
                       "same number of cells. No effect on one rank.");
+    prm.declare_entry("Settling steps",
+                      "0",
+                      Patterns::Integer(0),
+                      "Before the run, let the bodies settle at rest under "
+                      "gravity, their supports and contacts, for at most this "
+                      "many steps (kinetic damping: every velocity is set to "
+                      "zero whenever the kinetic energy passes a peak), until "
+                      "the kinetic energy is below 1e-6 of the gravitational "
+                      "energy of all the mass over one cell height; then the "
+                      "clock starts at 0 with the bodies' initial velocities "
+                      "and spins, the settled positions, stresses and "
+                      "deformation gradients. For every material: bodies set "
+                      "down on a support do not drop and bounce. 0: start as "
+                      "seeded. A run that has not settled within the steps "
+                      "stops with a message.");
     prm.leave_subsection();
 
     prm.enter_subsection("Grid");
@@ -263,6 +278,7 @@ namespace sable::mpm
     p.update_scheme = update_schemes.value(prm.get("Update scheme"));
     p.pic_fraction  = prm.get_double("PIC fraction");
     p.balance_particles = prm.get_bool("Balance particles across ranks");
+    p.settling_steps    = prm.get_integer("Settling steps");
     prm.leave_subsection();
 
     GridParameters<dim> &grid = scene.grid;

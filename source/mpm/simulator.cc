@@ -226,6 +226,8 @@ namespace sable::mpm
       }
     state.max_signal_speed = Utilities::MPI::max(max_speed, communicator);
     state.energy_floor     = 1e-14 * Utilities::MPI::sum(mass_wave_speed2, communicator);
+    if (parameters.settling_steps > 0)
+      settle_under_gravity();
 
     Statistics<dim> statistics   = compute_statistics();
     state.initial_energy         = statistics.kinetic_energy + statistics.strain_energy;
@@ -320,6 +322,13 @@ namespace sable::mpm
   {
     if (!initialized)
       initialize();
+    advance();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::advance()
+  {
     state.time_step      = compute_time_step();
     cells_with_particles = collect_cells_with_particles();
     scatter_momenta_and_forces();

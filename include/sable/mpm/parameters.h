@@ -61,6 +61,10 @@ namespace sable::mpm
     /// scene file). Off by default here: it repartitions the caller's
     /// triangulation, which invalidates data other objects keep on it.
     bool balance_particles = false;
+    /// Before the run, let the bodies settle under gravity at rest (kinetic
+    /// damping) for at most this many steps, then give them their initial
+    /// velocities; 0 = start as seeded (Solver/Settling steps).
+    unsigned int settling_steps = 0;
 
     Tensor<1, dim> gravity = {};
 

@@ -195,6 +195,16 @@ namespace sable::mpm
   private:
     using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
 
+    /// The phases of one step, in order (step() after initialize()).
+    void
+    advance();
+
+    /// Solver/Settling steps: settle the bodies at rest under gravity
+    /// (kinetic damping), then give them their seeded velocities and
+    /// restart the clock and the energy bookkeeping (settling.cc).
+    void
+    settle_under_gravity();
+
     // --- the phases of step(), in order ---
     double
     compute_time_step() const;

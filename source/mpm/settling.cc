@@ -1,0 +1,109 @@
+#include <deal.II/base/mpi.h>
+
+#include <sable/base/input_error.h>
+#include <sable/mpm/simulator.h>
+
+#include <limits>
+
+namespace sable::mpm
+{
+  template <int dim>
+  void
+  Simulator<dim>::settle_under_gravity()
+  {
+    double mass = 0;
+    for (auto &particle : *particle_handler)
+      {
+        auto props = particle.get_properties();
+        for (unsigned int d = 0; d < dim; ++d)
+          props[layout.velocity + d] = 0.;
+        mass += props[layout.mass];
+      }
+    const auto publish_velocities = [&]() {
+      if (contact && parallel)
+        particle_handler->update_ghost_particles();
+    };
+    publish_velocities();
+    const double tolerance = 1e-6 * Utilities::MPI::sum(mass, communicator) *
+                             parameters.gravity.norm() * grid.minimum_cell_size();
+
+    // kinetic damping: step at rest under gravity, and whenever the kinetic
+    // energy has passed a peak, take all of it away; settled when a peak
+    // stays below the tolerance
+    double       previous = 0, kinetic = 0, peak = std::numeric_limits<double>::max();
+    unsigned int n        = 0;
+    for (; n < parameters.settling_steps; ++n)
+      {
+        advance();
+        kinetic = 0;
+        for (const auto &particle : *particle_handler)
+          {
+            const auto props = particle.get_properties();
+            for (unsigned int d = 0; d < dim; ++d)
+              kinetic += 0.5 * props[layout.mass] * props[layout.velocity + d] *
+                         props[layout.velocity + d];
+          }
+        kinetic = Utilities::MPI::sum(kinetic, communicator);
+        if (kinetic < previous)
+          {
+            peak = previous;
+            if (peak <= tolerance)
+              break;
+            for (auto &particle : *particle_handler)
+              for (unsigned int d = 0; d < dim; ++d)
+                particle.get_properties()[layout.velocity + d] = 0.;
+            publish_velocities();
+            previous = 0;
+          }
+        else
+          previous = kinetic;
+      }
+    check_input(peak <= tolerance,
+                "Solver/Settling steps",
+                parameters.settling_steps,
+                "enough steps for the bodies to settle (" +
+                  (peak <= std::numeric_limits<double>::max() / 2 ?
+                     "the last peak of the kinetic energy was " + std::to_string(peak) + " J" :
+                     "the kinetic energy was still rising, " + std::to_string(kinetic) + " J") +
+                  ", above the tolerance " + std::to_string(tolerance) + " J)");
+    pcout << "Settled under gravity in " << n + 1 << " steps (" << state.time
+          << " s of damped motion)" << std::endl;
+
+    // the run starts now, from the settled state, each body moving with its
+    // velocity and spinning about its settled centre of mass
+    const Statistics<dim> settled = compute_statistics();
+    double                max_speed = 0;
+    for (auto &particle : *particle_handler)
+      {
+        auto                       props = particle.get_properties();
+        const unsigned int         b     = static_cast<unsigned int>(props[layout.body]);
+        const BodyParameters<dim> &body  = parameters.bodies[b];
+        Tensor<1, 3>               r;
+        for (unsigned int d = 0; d < dim; ++d)
+          r[d] = particle.get_location()[d] - settled.body_position[b][d];
+        const Tensor<1, 3> spin = cross_product_3d(body.angular_velocity, r);
+        Tensor<1, dim>     v;
+        for (unsigned int d = 0; d < dim; ++d)
+          props[layout.velocity + d] = v[d] = body.velocity[d] + spin[d];
+        max_speed = std::max(max_speed, body_wave_speed[b] + v.norm());
+      }
+    publish_velocities();
+    state.max_signal_speed = Utilities::MPI::max(max_speed, communicator);
+    state.time             = 0;
+    state.step_number      = 0;
+    state.boundary_work    = 0;
+    boundary_conditions.frictional_heat = 0;
+    if (contact)
+      {
+        auto &model               = contact->get_model();
+        model.frictional_heat     = 0;
+        model.momentum_defect     = 0;
+        model.momentum_correction = 0;
+        for (auto &force : model.pair_forces)
+          force = 0;
+      }
+  }
+
+  template void Simulator<2>::settle_under_gravity();
+  template void Simulator<3>::settle_under_gravity();
+} // namespace sable::mpm
