@@ -65,7 +65,9 @@ namespace sable::mpm
                   (peak <= std::numeric_limits<double>::max() / 2 ?
                      "the last peak of the kinetic energy was " + std::to_string(peak) + " J" :
                      "the kinetic energy was still rising, " + std::to_string(kinetic) + " J") +
-                  ", above the tolerance " + std::to_string(tolerance) + " J)");
+                  ", above the tolerance " + std::to_string(tolerance) +
+                  " J; a body free to slide or roll under the gravity, such as a disk "
+                  "on a slope, never settles)");
     pcout << "Settled under gravity in " << n + 1 << " steps (" << state.time
           << " s of damped motion)" << std::endl;
 

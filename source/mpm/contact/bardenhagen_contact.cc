@@ -411,8 +411,8 @@ namespace sable::mpm
                                          const Tensor<1, dim> &                  spacing,
                                          const double                            dt) const
   {
-    // the surfaces meet within the step if the centroids' distance along
-    // the normal, less what the bodies close in dt, is at most the distance
+    // the surfaces meet within the step if the centroids' distance, less
+    // what the bodies close along the normal in dt, is at most the distance
     // they have when touching
     const Tensor<1, dim> between = b.mass_position / b.mass - a.mass_position / a.mass;
     double               cell    = 0;
@@ -425,7 +425,19 @@ namespace sable::mpm
     // without it, 1.3% with it; 0.1 cell would slow a rolling disk)
     const double touching =
       (surface_offset[a.body] + surface_offset[b.body] + touching_tolerance) * std::sqrt(cell);
-    return between * normal - dt * std::max(closing, 0.) <= touching;
+    // apart, a sideways offset of the centroids beyond a quarter cell
+    // counts too: off the line of centres of two round bodies the normal
+    // tilts away from their distance, and two disks felt a force a cell
+    // before touching; up to a quarter cell is what an edge or a curved
+    // surface covering part of a node's support shifts a centroid sideways.
+    // Overlapping, the part along the normal says how far.
+    const double along      = between * normal;
+    const double sideways   = (between - along * normal).norm();
+    const double separation = along > 0 ?
+                                std::hypot(along,
+                                           std::max(sideways - sideways_tolerance * std::sqrt(cell), 0.)) :
+                                along;
+    return separation - dt * std::max(closing, 0.) <= touching;
   }
 
   template <int dim>

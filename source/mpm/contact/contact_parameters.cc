@@ -38,21 +38,18 @@ namespace sable::mpm
                       "friction while bodies approach. bardenhagen 2001: also "
                       "while the normal traction is compressive.");
     prm.declare_entry("Normals",
-                      "mass weighted",
+                      "largest mass",
                       normal_methods.pattern(),
                       "How the bodies' normals at a two-body node are made "
                       "collinear (so contact conserves momentum). 'largest "
-                      "mass' takes the normal of the body with the larger "
-                      "mass at the node, whose surface the node resolves "
-                      "better: a block sliding on a plane body then meets "
-                      "the plane's normal, not its own corner's tilted one "
-                      "(which plows; use it for flat bodies sliding on each "
-                      "other, see doc/validation.md). 'average' is the "
-                      "papers' n = (n1 - n2)/|n1 - n2| of the unit mass-"
-                      "gradient directions; 'mass weighted' (default) weights each "
-                      "direction by the body's nodal mass, so that a large "
-                      "flat body's normal is tilted less by a small body's "
-                      "corner (see doc/mpm.md).");
+                      "mass' (default) takes the normal of the body with the "
+                      "larger mass at the node, whose surface the node "
+                      "resolves better: a block sliding on a plane body then "
+                      "meets the plane's normal, not its own corner's tilted "
+                      "one, which plows (see doc/validation.md). 'mass "
+                      "weighted' weights each body's unit mass-gradient "
+                      "direction by its nodal mass; 'average' is the papers' "
+                      "n = (n1 - n2)/|n1 - n2| of the unit directions.");
     prm.declare_entry("Detection",
                       "surface position",
                       detections.pattern(),

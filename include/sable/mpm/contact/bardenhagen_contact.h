@@ -178,6 +178,9 @@ namespace sable::mpm
     std::vector<double> surface_offset;
     /// surfaces closer than this, in cells, touch (surfaces_meet())
     static constexpr double touching_tolerance = 0.01;
+    /// sideways offset of the centroids, in cells, that surfaces_meet()
+    /// does not count
+    static constexpr double sideways_tolerance = 0.25;
 
     unsigned int
     pair_index(const unsigned int a, const unsigned int b) const;

@@ -35,7 +35,7 @@ namespace sable::mpm
       /// of a block resting on it)
       largest_mass
     };
-    Normals normals = Normals::mass_weighted;
+    Normals normals = Normals::largest_mass;
     /// Which two-body nodes may act: every node the bodies share (the
     /// papers), or only where the bodies' surfaces have met, judged from
     /// the distance between their mass centroids at the node along the
