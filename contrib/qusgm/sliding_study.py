@@ -13,11 +13,13 @@ output/sliding_study):
   sliding_study.csv            per variant: sliding ratio (mean over the last
                                fifth of the path, and its largest), K and G
                                at the confining stresses listed, exponents
+  sliding_study.md             the same as a Markdown table
   sliding_study.png            sliding ratio, K and G against sigma_c with EMT
 
 Usage: sliding_study.py [--sable build/sable] [--work output/sliding_study]
                         [--grains 400] [--increments 80] [--target 4e6]
-                        [--variants name,name,...] [--plot-only]
+                        [--compaction-strain 4e-3] [--variants name,name,...]
+                        [--plot-only]
 """
 import argparse
 import csv
@@ -124,8 +126,7 @@ def prepare_pack(args):
         "Preparation/Target confining stress": str(args.target),
         "Preparation/Friction activation": "false",
         "Load path/Number of increments": "0",
-        # as prm/g2740.prm: jamming at 1e-5 can take the iteration limit
-        "Minimizer/Force tolerance": "1e-4",
+        "Preparation/Compaction strain increment": str(args.compaction_strain),
     })
     prm = os.path.join(args.work, "pack.prm")
     write_prm(prm, entries)
@@ -222,6 +223,18 @@ def summarise(args, tables):
         for line in summary:
             writer.writerow([line[0]] + [f"{x:.4g}" for x in line[1:]])
     print(open(out).read(), end="")
+    # the same as a Markdown table (GPa)
+    n = len(stresses)
+    mpa = " / ".join(f"{s/1e6:g}" for s in stresses)
+    with open(os.path.join(args.work, "sliding_study.md"), "w") as f:
+        f.write(f"| variant | sliding ratio (end) | largest | K at {mpa} MPa [GPa] | "
+                f"G at {mpa} MPa [GPa] | exponent K | exponent G |\n")
+        f.write("|---|---|---|---|---|---|---|\n")
+        for line in summary:
+            k = " / ".join(f"{x*1e-9:.3f}" for x in line[3:3 + n])
+            g = " / ".join(f"{x*1e-9:.3f}" for x in line[3 + n:3 + 2 * n])
+            f.write(f"| {line[0]} | {line[1]:.4f} | {line[2]:.4f} | {k} | {g} | "
+                    f"{line[3 + 2*n]:.2f} | {line[4 + 2*n]:.2f} |\n")
     return out
 
 
@@ -230,15 +243,15 @@ def plot(args, tables):
     smin, smax, zs, phis = 1e99, 0, [], []
     for index, (name, path) in enumerate(tables.items()):
         rows = read(path)
-        c = f"C{index % 10}"
+        c = plt.cm.tab20(index % 20)
         s = [r["s"] * 1e-6 for r in rows]
         axes[0].plot(s, [r["sliding"] for r in rows], color=c, lw=1, label=name)
         good = [r for r in rows if r["k"] > 0]
         axes[1].plot([r["s"] * 1e-6 for r in good], [r["k"] * 1e-9 for r in good], ".",
-                     color=c, ms=3, label=name)
+                     color=c, ms=3)
         good = [r for r in rows if r["g"] > 0]
         axes[2].plot([r["s"] * 1e-6 for r in good], [r["g"] * 1e-9 for r in good], ".",
-                     color=c, ms=3, label=name)
+                     color=c, ms=3)
         smin, smax = min(smin, min(s)), max(smax, max(s))
         zs.append(rows[-1]["z"])
         phis.append(rows[-1]["phi"])
@@ -249,8 +262,14 @@ def plot(args, tables):
     axes[1].plot(ps, k, "k-", label=f"EMT (Z={z:.2f}, phi={phi:.3f})")
     axes[2].plot(ps, [x * 3 * (5 - 4 * NU) / (5 * (2 - NU)) for x in k], "k-", label="EMT rough")
     axes[2].plot(ps, [x * 3 / 5 for x in k], "k--", label="EMT smooth")
-    # the paper's trend: K, G ~ sigma_c^0.45 at low stress, ^0.33 at high
-    for ax, names in ((axes[1], "K"), (axes[2], "G")):
+    # the paper's trend: K, G ~ sigma_c^0.45 at low stress, ^0.33 at high,
+    # drawn through the first variant's K at the middle of the path
+    first = read(next(iter(tables.values())))
+    middle = first[len(first) // 2]
+    for exponent, style in ((0.45, ":"), (0.33, "-.")):
+        axes[1].plot(ps, [middle["k"] * 1e-9 * (p * 1e6 / middle["s"]) ** exponent for p in ps],
+                     "k" + style, lw=0.8, label=f"sigma_c^{exponent} (paper's exponents)")
+    for ax in axes[1:]:
         ax.set_xscale("log")
         ax.set_yscale("log")
     for ax, name in zip(axes, ("sliding ratio", "K [GPa]", "G [GPa]")):
@@ -258,7 +277,8 @@ def plot(args, tables):
         ax.set_ylabel(name)
         ax.grid(alpha=0.3, which="both")
     axes[0].legend(fontsize=7)
-    axes[2].legend(fontsize=6)
+    axes[1].legend(fontsize=7, loc="upper left")
+    axes[2].legend(fontsize=7, loc="upper left")
     fig.suptitle(f"QuSGM sliding fraction: {args.grains} grains, friction and uniaxial strain "
                  f"increments of {args.strain:g} from a frictionless pack at "
                  f"{args.target/1e6:g} MPa")
@@ -276,6 +296,8 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--target", type=float, default=4e6)
     parser.add_argument("--strain", type=float, default=1e-4)
+    parser.add_argument("--compaction-strain", type=float, default=4e-3,
+                        help="largest isotropic step of the frictionless compaction")
     parser.add_argument("--increments", type=int, default=80)
     parser.add_argument("--stresses", default="8e6,12e6")
     parser.add_argument("--variants", default=",".join(VARIANTS))
