@@ -100,6 +100,32 @@ namespace sable::qusgm
       prm.declare_entry("Gravity", "false", Patterns::Bool(),
                         "Weight of the grains along -z.");
       prm.declare_entry("Gravity acceleration", "9.81", Patterns::Double(), "[m/s^2]");
+      prm.declare_entry("Friction cap", "reference", Patterns::Selection("reference|current"),
+                        "Normal load of the Coulomb caps mu P, (3 pi/16) a mu P: "
+                        "'reference' the increment's reference P0, a0 (the "
+                        "paper's eq. 6-7); 'current' the equilibrium's own P, a "
+                        "(the increment is solved again with updated caps until "
+                        "no cap changes by more than 1e-3 of the largest).");
+      prm.declare_entry("Sliding tolerance", "0", Patterns::Double(),
+                        "A contact counts as sliding when |Q| >= (1 - tolerance) "
+                        "Q_max; 0 <= tolerance < 1 (0: the paper's |Q| = Q_max).");
+      prm.declare_entry("Sliding count", "at cap", Patterns::Selection("at cap|eq. 7b"),
+                        "Which contacts at the cap count as sliding: 'at cap' "
+                        "every one; 'eq. 7b' only those for which the paper's "
+                        "reduced stiffness (eq. 7b as printed, with |Q^p.u_s|) "
+                        "gives |Q| = Q_max, Q^p.u_s >= 0: in continued loading "
+                        "(Q^p.u_s < 0) it gives |Q| > Q_max, which the paper's "
+                        "definition does not count.");
+      prm.declare_entry("Stick-slip decision", "per evaluation",
+                        Patterns::Selection("per evaluation|per increment"),
+                        "When a contact's stick or slip is decided: 'per "
+                        "evaluation' from the trial force Q* = Q^p - k* u_s "
+                        "wherever Pi is evaluated; 'per increment' once, from "
+                        "Q* at the increment's initial guess (with wall "
+                        "sub-increments, that of the first): a contact that "
+                        "sticks there keeps the stick stiffness without a cap "
+                        "until the increment ends, and its load is capped when "
+                        "it becomes the next reference.");
     }
     prm.leave_subsection();
     prm.enter_subsection("Preparation");
@@ -255,7 +281,19 @@ namespace sable::qusgm
     model.torsion              = prm.get_bool("Torsion");
     model.gravity              = prm.get_bool("Gravity");
     model.gravity_acceleration = prm.get_double("Gravity acceleration");
+    model.friction_cap         = prm.get("Friction cap") == "current" ?
+                                   ContactModel::FrictionCap::current :
+                                   ContactModel::FrictionCap::reference;
+    model.sliding_tolerance = prm.get_double("Sliding tolerance");
+    model.sliding_count     = prm.get("Sliding count") == "eq. 7b" ?
+                                ContactModel::SlidingCount::eq_7b :
+                                ContactModel::SlidingCount::at_cap;
+    model.stick_slip = prm.get("Stick-slip decision") == "per increment" ?
+                         ContactModel::StickSlip::per_increment :
+                         ContactModel::StickSlip::per_evaluation;
     prm.leave_subsection();
+    check_input(model.sliding_tolerance >= 0 && model.sliding_tolerance < 1,
+                "Contact/Sliding tolerance", model.sliding_tolerance, "0 <= tolerance < 1");
     check_input(model.friction >= 0, "Contact/Friction coefficient",
                 model.friction, "mu >= 0");
     check_input(model.wall_friction >= 0, "Contact/Wall friction coefficient",

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sable::qusgm
 {
@@ -130,6 +131,16 @@ namespace sable::qusgm
     const unsigned int rot      = 3 * n;
     const bool         friction = model.frictional();
     const bool         torsion  = friction && model.torsion;
+    // |Q| = min(|y|, cap) for the trial force y: sliding at |Q| = cap,
+    // within the tolerance.
+    const double slide_at   = 1. - model.sliding_tolerance;
+    const bool   eq_7b      = model.sliding_count == ContactModel::SlidingCount::eq_7b;
+    const auto   is_sliding = [slide_at, eq_7b](const Tensor<1, 3> &y,
+                                                const double        cap,
+                                                const Tensor<1, 3> &q_p,
+                                                const Tensor<1, 3> &u_s) {
+      return y.norm() >= slide_at * cap && (!eq_7b || q_p * u_s >= 0);
+    };
     // With a ContactState: per grain the normal forces on the six walls
     // and the sum of its contacts' normal forces (a pair's counts for its
     // first grain), summed over the grains in grain order at the end.
@@ -221,7 +232,7 @@ namespace sable::qusgm
               const Tensor<1, 3> q = capped_force(y, c.q_max);
               energy -= (capped_potential(q_p, c.q_max) - capped_potential(y, c.q_max)) /
                         c.k_s;
-              if (state && h > 0 && y.norm() > c.q_max && network.owns(c))
+              if (state && h > 0 && is_sliding(y, c.q_max, q_p, u_s) && network.owns(c))
                 ++state->n_sliding;
               if (q_out)
                 (*q_out)[k] = q;
@@ -324,7 +335,7 @@ namespace sable::qusgm
               const Tensor<1, 3> q = capped_force(y, c.q_max);
               energy -= (capped_potential(c.q0, c.q_max) - capped_potential(y, c.q_max)) /
                         c.k_s;
-              if (state && h > 0 && y.norm() > c.q_max)
+              if (state && h > 0 && is_sliding(y, c.q_max, c.q0, u_s))
                 ++state->n_sliding;
               if (q_out)
                 (*q_out)[n_pairs + k] = q;
@@ -479,6 +490,67 @@ namespace sable::qusgm
           state->mean_normal_force = sum_p / state->n_contacts;
       }
     return pi;
+  }
+
+  double
+  WorkFunctional::update_caps(const Vector<double> &theta,
+                              ContactNetwork       &network_to_update) const
+  {
+    double     largest_change = 0, largest_cap = 0;
+    const auto set = [&](Contact &c, const double h, const double r_star, const double mu) {
+      if (!(c.p0 > 0 && c.k_s > 0))
+        return;
+      const double p     = hertz_force(c.k_n, h);
+      const double a     = h > 0 ? std::sqrt(r_star * h) : 0.;
+      const double q_max = mu * p;
+      const double m_max = c.k_t > 0 ? torsion_cap(a, mu, p) : 0.;
+      largest_change     = std::max(largest_change, std::abs(q_max - c.q_max));
+      largest_cap        = std::max(largest_cap, q_max);
+      c.q_max            = q_max;
+      c.m_max            = m_max;
+    };
+    for (Contact &c : network_to_update.pairs)
+      {
+        const unsigned int i = c.i, j = c.other;
+        const double       d = ((pack.centre[i] + block(theta, 3 * i)) -
+                          (pack.centre[j] + block(theta, 3 * j)))
+                           .norm();
+        set(c,
+            pack.radius[i] + pack.radius[j] - d,
+            effective_radius(pack.radius[i], pack.radius[j]),
+            model.friction);
+      }
+    for (Contact &c : network_to_update.wall_contacts)
+      set(c,
+          walls.overlap(c.other, pack.centre[c.i] + block(theta, 3 * c.i), pack.radius[c.i]),
+          pack.radius[c.i],
+          model.wall_friction);
+    largest_change = network.get_partition().max(largest_change);
+    largest_cap    = network.get_partition().max(largest_cap);
+    return largest_cap > 0 ? largest_change / largest_cap : 0.;
+  }
+
+  void
+  WorkFunctional::freeze_stick_slip(const Vector<double> &theta,
+                                    ContactNetwork       &network_to_update) const
+  {
+    // |Q| = min(|y|, cap): below the cap, the trial force y sticks.
+    const std::size_t         n_pairs = network.pairs.size();
+    std::vector<Tensor<1, 3>> q(n_pairs + network.wall_contacts.size());
+    std::vector<double>       m(q.size(), 0.);
+    evaluate<false>(theta, nullptr, nullptr, &q, &m);
+    constexpr double unlimited = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < q.size(); ++k)
+      {
+        Contact &c = k < n_pairs ? network_to_update.pairs[k] :
+                                   network_to_update.wall_contacts[k - n_pairs];
+        if (!(c.p0 > 0 && c.k_s > 0))
+          continue;
+        if (q[k].norm() < c.q_max)
+          c.q_max = unlimited;
+        if (c.k_t > 0 && std::abs(m[k]) < c.m_max)
+          c.m_max = unlimited;
+      }
   }
 
   void

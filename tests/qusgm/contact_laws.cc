@@ -2,7 +2,8 @@
 // contact radius for two spheres and a sphere on a wall; the gradient of
 // the work functional against central finite differences with sticking,
 // sliding and torsion active; a contact sheared at fixed normal load to the
-// Coulomb cap, unloaded and reloaded.
+// Coulomb cap, unloaded and reloaded; which contacts count as sliding under
+// each rule; caps from the current normal load.
 #include <sable/qusgm/contact_network.h>
 #include <sable/qusgm/work_functional.h>
 
@@ -301,6 +302,106 @@ namespace
                    -mu * network.pairs[0].p0, 1e-6);
     check("reloading past the cap: sliding", sliding == 1);
   }
+
+  // Which contacts count as sliding: two spheres sheared at fixed normal
+  // load past the cap from zero load, then further in the same direction
+  // (continued loading), then back past the opposite cap (reversal).
+  // 'at cap' counts all three; 'eq. 7b' only the first and the last (the
+  // paper's eq. 7b gives |Q| > mu P in continued loading). A tolerance
+  // counts a contact just below the cap.
+  void
+  test_sliding_count()
+  {
+    const double r = 1e-4, h = 1e-7, mu = 0.3;
+    Pack         pack;
+    pack.add_grain(Point<3>(0, 0, 0), r, 70e9, 0.2, 2420);
+    pack.add_grain(Point<3>(2 * r - h, 0, 0), r, 70e9, 0.2, 2420);
+    ContactModel model;
+    model.friction      = mu;
+    model.wall_friction = mu;
+    model.torsion       = false;
+    Walls          reference = far_walls();
+    ContactNetwork network;
+    build(pack, reference, network, model);
+    const double cap_shift = mu * network.pairs[0].p0 / network.pairs[0].k_s;
+
+    // Sliding count under each rule for a shear s of grain 1 against 2.
+    auto count = [&](const double s, const bool keep) {
+      std::array<unsigned int, 3> n{};
+      Vector<double>              theta(12);
+      theta[1] = 0.5 * s;
+      theta[4] = -0.5 * s;
+      ContactModel rule = model;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          rule.sliding_count     = k == 1 ? ContactModel::SlidingCount::eq_7b :
+                                            ContactModel::SlidingCount::at_cap;
+          rule.sliding_tolerance = k == 2 ? 0.01 : 0.;
+          WorkFunctional functional(pack, network, rule);
+          functional.set_walls(reference);
+          n[k] = functional.state(theta).n_sliding;
+          if (keep && k == 2)
+            functional.commit(theta, pack, network, reference);
+        }
+      return n;
+    };
+    using Counts = std::array<unsigned int, 3>; // at cap, eq. 7b, 1% tolerance
+    check("0.995 of the cap: only the tolerance counts it",
+          count(0.995 * cap_shift, false) == Counts{{0, 0, 1}});
+    check("past the cap from zero load: every rule counts it",
+          count(2 * cap_shift, true) == Counts{{1, 1, 1}});
+    check("continued loading at the cap: eq. 7b does not count it",
+          count(cap_shift, true) == Counts{{1, 0, 1}});
+    check("reversal past the opposite cap: every rule counts it",
+          count(-3 * cap_shift, true) == Counts{{1, 1, 1}});
+  }
+
+  // Caps from the current normal load: pressing two spheres further
+  // (overlap 1.5 h) and updating the caps gives mu P and (3 pi/16) a mu P
+  // at the new overlap; a shear past the cap then carries mu P, not mu P0.
+  void
+  test_current_cap()
+  {
+    const double r = 1e-4, h = 1e-7, mu = 0.3;
+    Pack         pack;
+    pack.add_grain(Point<3>(0, 0, 0), r, 70e9, 0.2, 2420);
+    pack.add_grain(Point<3>(2 * r - h, 0, 0), r, 70e9, 0.2, 2420);
+    ContactModel model;
+    model.friction      = mu;
+    model.wall_friction = mu;
+    model.friction_cap  = ContactModel::FrictionCap::current;
+    const Walls    walls = far_walls();
+    ContactNetwork network;
+    build(pack, walls, network, model);
+    const Contact  reference = network.pairs[0];
+    WorkFunctional functional(pack, network, model);
+    functional.set_walls(walls);
+    Vector<double> theta(12);
+    theta[0]             = 0.25 * h;
+    theta[3]             = -0.25 * h;
+    const double p       = reference.k_n * std::pow(1.5 * h, 1.5);
+    const double change  = functional.update_caps(theta, network);
+    check_relative("current cap: mu P at the new overlap", network.pairs[0].q_max, mu * p, 1e-12);
+    check_relative("current cap: torsion (3 pi/16) a mu P",
+                   network.pairs[0].m_max,
+                   3 * M_PI / 16 * std::sqrt(0.5 * r * 1.5 * h) * mu * p,
+                   1e-12);
+    check_relative("current cap: change reported relative to the new cap",
+                   change, (p - reference.p0) / p, 1e-12);
+    check("current cap: stiffness and reference load unchanged",
+          network.pairs[0].k_s == reference.k_s && network.pairs[0].p0 == reference.p0);
+    // Shear past the new cap; the committed load is the force carried.
+    const double shift = 3 * mu * p / reference.k_s;
+    theta[1]           = 0.5 * shift;
+    theta[4]           = -0.5 * shift;
+    Walls moved        = walls;
+    functional.commit(theta, pack, network, moved);
+    // (the shear moves the centres apart by s^2/2d: P drops by 4e-4; with
+    // the reference cap the force would be mu P0 = 0.54 mu P)
+    check_relative("current cap: normal load after the shear", network.pairs[0].p0, p, 1e-3);
+    check_relative("current cap: sliding force mu P",
+                   network.pairs[0].q0.norm(), mu * network.pairs[0].p0, 1e-12);
+  }
 } // namespace
 
 int
@@ -309,5 +410,7 @@ main()
   test_hertz();
   test_gradient();
   test_shear_to_cap();
+  test_sliding_count();
+  test_current_cap();
   return sable_tests::exit_code();
 }

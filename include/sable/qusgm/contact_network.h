@@ -8,6 +8,8 @@
 #include <sable/qusgm/pack.h>
 #include <sable/qusgm/pack_io.h>
 
+#include <boost/serialization/version.hpp>
+
 #include <cstdint>
 #include <vector>
 
@@ -22,11 +24,40 @@ namespace sable::qusgm
     bool   gravity  = false; ///< weight m g along -z
     double gravity_acceleration = 9.81;
 
+    /// Normal load of the Coulomb caps mu P, (3 pi/16) a mu P.
+    enum class FrictionCap
+    {
+      reference, ///< P0, a0 of the increment (the paper's eq. 6-7, 11-12)
+      current    ///< P, a at the equilibrium found (caps updated, re-solved)
+    };
+    FrictionCap friction_cap = FrictionCap::reference;
+    /// A contact counts as sliding when |Q| >= (1 - tolerance) Q_max.
+    double sliding_tolerance = 0;
+    /// Which contacts at the cap count as sliding.
+    enum class SlidingCount
+    {
+      at_cap, ///< every one (|Q| = Q_max)
+      eq_7b   ///< those where the paper's eq. 7b as printed gives |Q| = Q_max:
+              ///< Q^p . u_s >= 0 (in continued loading it gives |Q| > Q_max)
+    };
+    SlidingCount sliding_count = SlidingCount::at_cap;
+    /// When a contact's stick or slip is decided.
+    enum class StickSlip
+    {
+      per_evaluation, ///< from the trial force at every evaluation of Pi
+      per_increment   ///< once, from the trial force at the initial guess:
+                      ///< a contact that sticks there has no cap until the
+                      ///< increment ends
+    };
+    StickSlip stick_slip = StickSlip::per_evaluation;
+
     template <class Archive>
     void
-    serialize(Archive &ar, const unsigned int)
+    serialize(Archive &ar, const unsigned int version)
     {
       ar &friction &wall_friction &torsion &gravity &gravity_acceleration;
+      if (version >= 1)
+        ar &friction_cap &sliding_tolerance &sliding_count &stick_slip;
     }
 
     bool
@@ -178,5 +209,9 @@ namespace sable::qusgm
     GrainPartition        partition;
   };
 } // namespace sable::qusgm
+
+// Version 1 added the friction cap, the sliding count and tolerance and
+// the stick-slip decision.
+BOOST_CLASS_VERSION(sable::qusgm::ContactModel, 1)
 
 #endif

@@ -87,6 +87,25 @@ namespace sable::qusgm
            ContactNetwork       &network,
            Walls                &reference_walls) const;
 
+    /**
+     * Set the Coulomb caps of the frictional contacts of @p network (the
+     * one this functional evaluates) to mu P and (3 pi/16) a mu P with the
+     * normal load and contact radius at theta (zero for a contact that has
+     * opened). Returns the largest change of a shear cap relative to the
+     * largest new one.
+     */
+    double
+    update_caps(const Vector<double> &theta, ContactNetwork &network_to_update) const;
+
+    /**
+     * Decide stick or slip of every frictional contact of @p network_to_update
+     * (the one this functional evaluates) once, from the trial forces at
+     * theta: a contact whose shear (torsional) trial force is within its cap
+     * loses that cap until the next reference is set.
+     */
+    void
+    freeze_stick_slip(const Vector<double> &theta, ContactNetwork &network_to_update) const;
+
     /// Largest |F_i|, |M_i|/R_i over the grains for a gradient vector.
     static double
     max_residual(const Vector<double> &gradient);
