@@ -8,6 +8,7 @@
 #include <deal.II/base/timer.h>
 
 #include <sable/base/input_error.h>
+#include <sable/base/parameter_file.h>
 #include <sable/base/common_parameters.h>
 #include <sable/qusgm/load_path.h>
 #include <sable/qusgm/pack_io.h>
@@ -224,9 +225,10 @@ namespace sable::qusgm
   void
   run_scene(const std::string &                  filename,
             MPI_Comm                             communicator,
-            const bool                           resume,
+            const OutputMode                     mode,
             const std::vector<ParameterSetting> &parameter_settings)
   {
+    const bool resume = mode == OutputMode::resume;
     const auto start = std::chrono::steady_clock::now();
     const bool root  = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
     const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(communicator);
@@ -236,7 +238,7 @@ namespace sable::qusgm
     declare_parameters(prm);
     try
       {
-        prm.parse_input(filename);
+        parse_parameter_file(prm, filename);
       }
     catch (const dealii::ExceptionBase &e)
       {
@@ -479,15 +481,14 @@ namespace sable::qusgm
       }
     pack.check("Pack");
 
-    // The checkpoint to resume from, before any work.
-    const std::string checkpoint =
+    // The output directory (locked for the run) and the checkpoint to
+    // resume from, before any work.
+    const OutputDirectory output_directory(output, mode, communicator, std::cout);
+    const std::string     checkpoint =
       resume ? find_checkpoint(output, communicator, std::cout) : std::string();
 
     // --- Work and output. Every rank runs the whole scene (the grains'
     // contacts are shared out, see GrainPartition); the first one writes.
-    if (root)
-      std::filesystem::create_directories(output);
-    MPI_Barrier(communicator);
     dealii::ConditionalOStream out(std::cout, root);
     dealii::TimerOutput timer(out, dealii::TimerOutput::never,
                               dealii::TimerOutput::wall_times);
