@@ -33,7 +33,11 @@ namespace sable::mpm
                       Patterns::Anything(),
                       "Directory for all output of the run, created after "
                       "the parameters are checked. Empty: output/<name of "
-                      "the parameter file without .prm>.");
+                      "the parameter file without .prm>. A run does not "
+                      "start if it holds an earlier run's outputs (sable "
+                      "--overwrite removes them, --resume continues that "
+                      "run) or another run writes into it (the lock file "
+                      "sable.lock).");
     prm.declare_entry("Number of bodies",
                       "1",
                       Patterns::Integer(1, 1000000),

@@ -36,7 +36,11 @@ namespace sable::qusgm
     prm.declare_entry("Output directory", "",
                       Patterns::Anything(),
                       "Where the run writes increments.csv, the grain VTU "
-                      "files and the final pack. Empty: output/<scene name>.");
+                      "files and the final pack. Empty: output/<scene name>. "
+                      "A run does not start if it holds an earlier run's "
+                      "outputs (sable --overwrite removes them, --resume "
+                      "continues that run) or another run writes into it "
+                      "(the lock file sable.lock).");
     prm.enter_subsection("Pack");
     {
       prm.declare_entry("Source", "generate", Patterns::Selection("generate|file|state"),

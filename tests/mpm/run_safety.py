@@ -4,7 +4,7 @@
 1. a fresh run into a directory holding an earlier run's results is refused
    (naming the directory, --overwrite and --resume) and changes nothing;
    --overwrite removes the earlier outputs (stale particle files too) and
-   keeps unrelated files;
+   keeps unrelated files; the same for a QuSGM run;
 2. a lock file against a second run into the same directory: a running
    holder is named (process id and host), a dead holder's lock is taken
    over with a note, the lock goes on normal exit and on errors;
@@ -98,6 +98,26 @@ check("... the earlier run's later particle files are gone",
       not os.path.exists(os.path.join(out, particles[-1])), f"{len(particles)} files before, {len(after)} after")
 check("... unrelated files are kept", os.path.exists(os.path.join(out, "notes.txt")))
 check("... no lock file left after a normal exit", not os.path.exists(os.path.join(out, "sable.lock")))
+
+# the same for a QuSGM run (the demo scene, smaller)
+directory = os.path.join(WORK, "qusgm")
+shutil.rmtree(directory, ignore_errors=True)
+os.makedirs(directory)
+qusgm = [os.path.join(os.environ.get("SABLE_SOURCE", os.path.join(os.path.dirname(__file__), "..", "..")),
+                      "prm", "qusgm_demo.prm"),
+         "--set", "Output directory=output", "--set", "Pack/Number of grains=60",
+         "--set", "Preparation/Target confining stress=2e6", "--set", "Preparation/Maximum activation increments=5",
+         "--set", "Load path/Number of increments=1"]
+code, output = sable(directory, qusgm)
+check("QuSGM: a fresh run", code == 0, last_line(output))
+before = snapshot(os.path.join(directory, "output"))
+code, output = sable(directory, qusgm)
+check("QuSGM: a second fresh run into its results is refused, naming increments.csv and --overwrite",
+      code != 0 and "'output'" in output and "increments.csv" in output and "--overwrite" in output,
+      last_line(output))
+check("... nothing changed", snapshot(os.path.join(directory, "output")) == before)
+code, output = sable(directory, qusgm + ["--overwrite"])
+check("QuSGM: --overwrite runs", code == 0 and "removed the earlier outputs" in output, last_line(output))
 
 # --- 2. the lock file
 name = "lock"
