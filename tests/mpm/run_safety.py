@@ -16,10 +16,10 @@
    is named;
 5. a scene far beyond the machine's memory is refused at once, naming the
    entry, the need and the available memory;
-6. an output directory that cannot be created, a statistics file and a
-   checkpoint that cannot be written (a file size limit, as a full disk
-   would) are reported by sable with the path; the earlier checkpoint
-   survives.
+6. an output directory that cannot be created, a statistics file (MPM and
+   QuSGM) and a checkpoint that cannot be written (a file size limit, as a
+   full disk would) are reported by sable with the path; the earlier
+   checkpoint survives.
 (Unknown boundary ids are refused in bad_input.py.)"""
 import hashlib
 import os
@@ -118,6 +118,10 @@ check("QuSGM: a second fresh run into its results is refused, naming increments.
 check("... nothing changed", snapshot(os.path.join(directory, "output")) == before)
 code, output = sable(directory, qusgm + ["--overwrite"])
 check("QuSGM: --overwrite runs", code == 0 and "removed the earlier outputs" in output, last_line(output))
+code, output = sable(directory, qusgm + ["--overwrite"], limit=1000)
+check("QuSGM: increments.csv beyond a file size limit: non-zero exit, naming the file and the increment",
+      code != 0 and "cannot write 'output/increments.csv' (increment" in output, last_line(output))
+check("... no lock left", not os.path.exists(os.path.join(directory, "output", "sable.lock")))
 
 # --- 2. the lock file
 name = "lock"
