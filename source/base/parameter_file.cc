@@ -2,9 +2,12 @@
 #include <sable/base/parameter_file.h>
 
 #include <filesystem>
+#include <charconv>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace sable
@@ -38,7 +41,7 @@ namespace sable
       return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
     }
 
-    /// @p value with numbers in a canonical form (17 digits).
+    /// @p value with numbers in a canonical form.
     std::string
     canonical(const std::string &value)
     {
@@ -53,9 +56,10 @@ namespace sable
           const double number = std::strtod(item.c_str(), &end);
           if (!item.empty() && *end == '\0')
             {
-              std::ostringstream text;
-              text << std::setprecision(17) << number;
-              item = text.str();
+              // the shortest text that reads back to the same number
+              char       text[64];
+              const auto written = std::to_chars(text, text + sizeof(text), number);
+              item.assign(text, written.ptr);
             }
           result += (first ? "" : ", ") + item;
           first = false;
@@ -147,5 +151,36 @@ namespace sable
           }
       }
     return entries;
+  }
+} // namespace sable
+
+
+namespace sable
+{
+  std::string
+  entry_differences(const std::vector<std::pair<std::string, std::string>> &saved,
+                    const std::vector<std::pair<std::string, std::string>> &now,
+                    const std::function<bool(const std::string &)>         &may_change)
+  {
+    const std::map<std::string, std::string> before(saved.begin(), saved.end());
+    const std::map<std::string, std::string> after(now.begin(), now.end());
+    std::set<std::string>                    names;
+    for (const auto &[name, value] : before)
+      names.insert(name);
+    for (const auto &[name, value] : after)
+      names.insert(name);
+    std::string text;
+    for (const std::string &name : names)
+      {
+        const auto        old_value = before.find(name);
+        const auto        new_value = after.find(name);
+        const std::string a =
+          old_value == before.end() ? "(not in that scene)" : "'" + old_value->second + "'";
+        const std::string b =
+          new_value == after.end() ? "(not in this scene)" : "'" + new_value->second + "'";
+        if (a != b && !may_change(name))
+          text += "\n  " + name + ": " + a + " in the checkpoint, " + b + " now";
+      }
+    return text;
   }
 } // namespace sable

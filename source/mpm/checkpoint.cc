@@ -5,6 +5,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <sable/base/checkpoint_directory.h>
+#include <sable/base/parameter_file.h>
 #include <sable/base/write_check.h>
 #include <sable/mpm/checkpoint.h>
 #include <sable/mpm/run_state.h>
@@ -23,8 +24,6 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
-#include <map>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -109,32 +108,6 @@ namespace sable::mpm
       for (unsigned int d = 0; d < dim; ++d)
         box.push_back(corners.second[d]);
       return box;
-    }
-
-    /// The entries of @p saved and @p now that differ and must not, one
-    /// line each ("" if none).
-    std::string
-    scene_differences(const std::vector<std::pair<std::string, std::string>> &saved,
-                      const std::vector<std::pair<std::string, std::string>> &now)
-    {
-      const std::map<std::string, std::string> before(saved.begin(), saved.end());
-      const std::map<std::string, std::string> after(now.begin(), now.end());
-      std::set<std::string>                    names;
-      for (const auto &[name, value] : before)
-        names.insert(name);
-      for (const auto &[name, value] : after)
-        names.insert(name);
-      std::string text;
-      for (const std::string &name : names)
-        {
-          const auto old_value = before.find(name);
-          const auto new_value = after.find(name);
-          const std::string a  = old_value == before.end() ? "(not in that scene)" : "'" + old_value->second + "'";
-          const std::string b  = new_value == after.end() ? "(not in this scene)" : "'" + new_value->second + "'";
-          if (a != b && !may_change_on_resume(name))
-            text += "\n  " + name + ": " + a + " in the checkpoint, " + b + " now";
-        }
-      return text;
     }
 
     /**
@@ -299,7 +272,7 @@ namespace sable::mpm
     if (!state.scene_entries.empty() && !parameters.scene_entries.empty())
       {
         const std::string differences =
-          scene_differences(state.scene_entries, parameters.scene_entries);
+          entry_differences(state.scene_entries, parameters.scene_entries, may_change_on_resume);
         require(differences.empty(),
                 "cannot resume from '" + directory +
                   "': the scene differs from the one the checkpoint was written with:" +

@@ -252,6 +252,8 @@ namespace sable::qusgm
                          "': " + message.str());
       }
     apply_parameter_settings(prm, parameter_settings);
+    // what a checkpoint keeps and a resume compares
+    const std::vector<std::pair<std::string, std::string>> entries = parameter_entries(prm);
 
     // --- Read and check everything before any work or output.
     ContactModel model;
@@ -518,6 +520,17 @@ namespace sable::qusgm
     if (resume)
       {
         progress = load_checkpoint(sim, checkpoint);
+        // the checkpoint's scene, not another one (its pack, walls and
+        // contact model would silently replace the file's)
+        const std::string differences =
+          entry_differences(progress.scene_entries, entries, may_change_on_resume);
+        if (!differences.empty())
+          throw std::runtime_error(
+            "cannot resume from '" + checkpoint +
+            "': the scene differs from the one the checkpoint was written with:" + differences +
+            "\nOnly Load path/Number of increments, the Output entries, Threads and the "
+            "Output directory may change on resume. Give these entries their earlier values, or "
+            "start the run again with --overwrite.");
         // the table as it was at the checkpoint, continued from there
         const unsigned int rows = sim.n_increments;
         on_root(communicator, [&]() {
@@ -527,6 +540,7 @@ namespace sable::qusgm
         out << "Resumed from " << checkpoint << " after " << progress.load_increments
             << " increment(s) of the load path (" << rows << " in increments.csv)" << std::endl;
       }
+    progress.scene_entries = entries;
     if (root)
       sim.open_table(output + "/increments.csv", resume);
     if (iteration_log)

@@ -123,6 +123,19 @@ check("QuSGM: increments.csv beyond a file size limit: non-zero exit, naming the
       code != 0 and "cannot write 'output/increments.csv' (increment" in output, last_line(output))
 check("... no lock left", not os.path.exists(os.path.join(directory, "output", "sable.lock")))
 
+# QuSGM: a resume with another friction is refused, naming it; a longer
+# load path is not
+qusgm_checkpoints = qusgm + ["--set", "Output/Checkpoint interval=1"]
+code, output = sable(directory, qusgm_checkpoints + ["--overwrite"])
+code, output = sable(directory, qusgm_checkpoints + ["--resume", "--set", "Contact/Friction coefficient=0.5",
+                                                     "--set", "Load path/Number of increments=2"])
+check("QuSGM: --resume with another friction coefficient: refused, naming it with both values",
+      code != 0 and "Contact/Friction coefficient: '0.3' in the checkpoint, '0.5' now" in output and
+      "Number of increments" not in output.replace("Load path/Number of increments, the Output", ""),
+      last_line(output))
+code, output = sable(directory, qusgm_checkpoints + ["--resume", "--set", "Load path/Number of increments=2"])
+check("QuSGM: --resume with a longer load path runs on", code == 0 and "Resumed from" in output, last_line(output))
+
 # --- 2. the lock file
 name = "lock"
 directory = os.path.join(WORK, name)
@@ -164,7 +177,7 @@ changed = ["--set", "Body 0/Young's modulus=2e6", "--set", "Grid/Subdivisions=20
            "--set", "Contact/Friction coefficient=0.5"]
 code, output = sable(directory, ["scene.prm", "--resume"] + changed)
 check("--resume with another material, grid and contact: non-zero exit", code != 0, f"exit code {code}")
-for entry, old, new in [("Body 0/Young's modulus", "1000000", "2000000"),
+for entry, old, new in [("Body 0/Young's modulus", "1e+06", "2e+06"),
                         ("Grid/Subdivisions", "10, 10", "20, 20"),
                         ("Contact/Friction coefficient", "0", "0.5")]:
     line = next((l for l in output.splitlines() if l.strip().startswith(entry + ":")), "")

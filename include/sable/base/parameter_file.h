@@ -4,6 +4,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,11 +28,23 @@ namespace sable
   /**
    * Every entry of @p prm with its value, as ("Subsection/.../Entry",
    * value) in the order ParameterHandler prints them; a value that is a
-   * number or a list of numbers is written with 17 significant digits, so
-   * that "1e9" and "1000000000" read the same.
+   * number or a list of numbers is written in the shortest form that reads
+   * back to the same numbers, so that "1e9" and "1000000000" read the same
+   * ("1e+09").
    */
   std::vector<std::pair<std::string, std::string>>
   parameter_entries(const dealii::ParameterHandler &prm);
+
+  /**
+   * The entries of @p saved and @p now (as parameter_entries() gives them)
+   * whose values differ and that @p may_change does not accept, one line
+   * each: "\n  Subsection/Entry: 'old' in the checkpoint, 'new' now"; an
+   * empty string if there are none.
+   */
+  std::string
+  entry_differences(const std::vector<std::pair<std::string, std::string>> &saved,
+                    const std::vector<std::pair<std::string, std::string>> &now,
+                    const std::function<bool(const std::string &)>         &may_change);
 } // namespace sable
 
 #endif
