@@ -54,7 +54,7 @@ namespace sable::mpm
                       "flat body's normal is tilted less by a small body's "
                       "corner (see doc/mpm.md).");
     prm.declare_entry("Detection",
-                      "shared nodes",
+                      "surface position",
                       detections.pattern(),
                       "Where two bodies are in contact. 'shared nodes': at "
                       "every node both bodies' points reach (the papers; "

@@ -176,6 +176,8 @@ namespace sable::mpm
     /// per body: the distance from its surface to its mass centroid at a
     /// surface node, in cells (points filling the cells up to the surface)
     std::vector<double> surface_offset;
+    /// surfaces closer than this, in cells, touch (surfaces_meet())
+    static constexpr double touching_tolerance = 0.01;
 
     unsigned int
     pair_index(const unsigned int a, const unsigned int b) const;

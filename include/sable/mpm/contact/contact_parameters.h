@@ -47,7 +47,7 @@ namespace sable::mpm
       shared_nodes,
       surface_position
     };
-    Detection detection = Detection::shared_nodes;
+    Detection detection = Detection::surface_position;
     /// Contact at nodes that three or more bodies share.
     enum class MultiBodyNodes
     {
