@@ -5,6 +5,7 @@
 
 #include <sable/base/common_parameters.h>
 #include <sable/base/input_error.h>
+#include <sable/base/output_directory.h>
 #include <sable/base/parameter_settings.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/run_scene.h>
@@ -21,7 +22,7 @@ namespace
   print_usage(std::ostream &out)
   {
     out << "Usage: sable [--threads N] [--set \"Subsection/Entry=value\"]... <scene.prm>\n"
-           "             [--resume]\n"
+           "             [--overwrite | --resume]\n"
            "       sable --print-parameters [mpm|qusgm] [2|3]\n"
            "       sable --help\n\n"
            "Runs the granular-mechanics scene described by the parameter file.\n"
@@ -30,10 +31,20 @@ namespace
            "'set Dimension = 2|3' the MPM space dimension. Output goes to\n"
            "'set Output directory'. --print-parameters writes every entry\n"
            "with its default and documentation (see doc/parameters.md).\n\n"
-           "--resume (MPM) continues the run from the last checkpoint in\n"
+           "A run does not start if its output directory holds the results\n"
+           "of an earlier run (statistics.csv, increments.csv, particle or\n"
+           "grain files, a checkpoint) or another sable run writes into it\n"
+           "(the lock file sable.lock). --overwrite removes those earlier\n"
+           "outputs first (only sable's own files, nothing else).\n"
+           "--resume continues the run from the last checkpoint in\n"
            "its output directory (written with 'Output/Checkpoint interval'\n"
            "> 0), to the End time and step limit the file gives now;\n"
            "statistics.csv is continued as if the run had not stopped.\n"
+           "The scene must be the one the checkpoint was written with\n"
+           "(MPM: materials, bodies, grid, boundaries, contact; QuSGM:\n"
+           "pack, walls, contact, minimiser); only the time limits or\n"
+           "number of increments, the output and a few solver entries\n"
+           "may change (doc/mpm.md, \"Resuming a run\"; doc/qusgm.md).\n"
            "--threads N runs N threads per MPI rank (0: one per core);\n"
            "it overrides the environment variable SABLE_THREADS and the\n"
            "scene's 'set Threads' (default 1).\n"
@@ -77,6 +88,7 @@ main(int argc, char **argv)
       // taken out of argv
       std::string              threads_option;
       std::vector<std::string> set_options;
+      bool                     resume = false, overwrite = false;
       if (const char *environment = std::getenv("SABLE_THREADS"))
         threads_option = environment;
       for (int i = 1; i < argc; ++i)
@@ -105,6 +117,11 @@ main(int argc, char **argv)
           else if (argument.rfind("--set=", 0) == 0)
             {
               set_options.push_back(argument.substr(6));
+              taken = 1;
+            }
+          else if (argument == "--resume" || argument == "--overwrite")
+            {
+              (argument == "--resume" ? resume : overwrite) = true;
               taken = 1;
             }
           if (taken > 0)
@@ -157,8 +174,10 @@ main(int argc, char **argv)
             print_parameters(model, dim);
           return 0;
         }
-      const bool resume = argc == 3 && std::string(argv[2]) == "--resume";
-      if ((argc > 2 && !resume) || first.rfind("-", 0) == 0)
+      sable::check_input(!(resume && overwrite), "--resume and --overwrite", "both given",
+                         "one of them: --resume continues the earlier run, --overwrite "
+                         "replaces it");
+      if (argc > 2 || first.rfind("-", 0) == 0)
         {
           if (root)
             {
@@ -171,14 +190,17 @@ main(int argc, char **argv)
       const sable::CommonParameters common =
         sable::read_common_parameters(first, settings);
       sable::set_threads(threads >= 0 ? threads : common.threads);
+      const sable::OutputMode mode = resume    ? sable::OutputMode::resume :
+                                     overwrite ? sable::OutputMode::overwrite :
+                                                 sable::OutputMode::fresh;
       if (common.model == sable::Model::qusgm)
         {
-          sable::qusgm::run_scene(first, MPI_COMM_WORLD, resume, settings);
+          sable::qusgm::run_scene(first, MPI_COMM_WORLD, mode, settings);
         }
       else if (common.dimension == 3)
-        sable::mpm::run_scene<3>(first, MPI_COMM_WORLD, resume, settings);
+        sable::mpm::run_scene<3>(first, MPI_COMM_WORLD, mode, settings);
       else
-        sable::mpm::run_scene<2>(first, MPI_COMM_WORLD, resume, settings);
+        sable::mpm::run_scene<2>(first, MPI_COMM_WORLD, mode, settings);
     }
   catch (const sable::InputError &error)
     {

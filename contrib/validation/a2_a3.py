@@ -119,7 +119,7 @@ def run(sable, name, radius, size, per_radius, work, end_time):
     with open(scene) as f:
         text = f.read()
     T = end_time if end_time is not None else float(re.search(r"(?m)^\s*set End time\s*=\s*([^#\s]+)", text).group(1))
-    result = subprocess.run([sable, scene] + settings(cells, tag, end_time, T), cwd=work,
+    result = subprocess.run([sable, scene, "--overwrite"] + settings(cells, tag, end_time, T), cwd=work,
                             capture_output=True, text=True)
     output = result.stdout + result.stderr
     if result.returncode != 0:

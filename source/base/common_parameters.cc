@@ -2,6 +2,7 @@
 
 #include <sable/base/common_parameters.h>
 #include <sable/base/input_error.h>
+#include <sable/base/parameter_file.h>
 
 #include <fstream>
 #include <memory>
@@ -64,7 +65,7 @@ namespace sable
     }
     dealii::ParameterHandler prm;
     declare_common_parameters(prm);
-    prm.parse_input(filename, "", /*skip_undefined=*/true);
+    parse_parameter_file(prm, filename, /*skip_undefined=*/true);
     apply_parameter_settings(prm, settings, /*skip_undeclared=*/true);
     CommonParameters common;
     common.model = prm.get("Model") == "qusgm" ? Model::qusgm : Model::mpm;

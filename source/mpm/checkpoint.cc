@@ -5,6 +5,8 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <sable/base/checkpoint_directory.h>
+#include <sable/base/parameter_file.h>
+#include <sable/base/write_check.h>
 #include <sable/mpm/checkpoint.h>
 #include <sable/mpm/run_state.h>
 #include <sable/mpm/postprocess/grid_output.h>
@@ -46,11 +48,12 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 5: the friction heat of the walls (4: the run
+      /// 6: the scene's entries, compared on resume (5: the friction
+      /// heat of the walls; 4: the run
       /// state as one RunState, the contact nodes as an output series;
       /// 3: the grid's base level and the grid output series; 1 and 2 have
       /// a coarse mesh of every subdivision cell)
-      static constexpr unsigned int current_format = 5;
+      static constexpr unsigned int current_format = 6;
       unsigned int          format         = current_format;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
@@ -73,17 +76,23 @@ namespace sable::mpm
       std::vector<XDMFEntry>                      xdmf_entries;
       std::vector<std::pair<double, std::string>> grid_files;
       std::vector<XDMFEntry>                      grid_xdmf_entries;
+      std::vector<std::pair<std::string, std::string>> scene_entries;
 
       template <class Archive>
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar &format &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
+        ar &format;
+        // an older format is reported by resume(), not misread
+        if (format != current_format)
+          return;
+        ar &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
         ar &n_particles &run &wall_heat;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction;
         ar &pair_forces;
         ar &particle_files &contact_node_files &contact_node_xdmf_entries &xdmf_entries;
         ar &grid_files &grid_xdmf_entries;
+        ar &scene_entries;
       }
     };
 
@@ -146,9 +155,25 @@ namespace sable::mpm
       directory_name.empty() ? fs::path(parameters.output_directory) / checkpoint_name :
                                fs::path(directory_name);
     const fs::path tmp = directory.string() + ".tmp";
+    // the material points' properties, the bulk of the checkpoint, at least
+    const double bytes =
+      double(particle_handler->n_global_particles()) * layout.n_properties() * sizeof(double);
     on_root(communicator, [&]() {
-      fs::remove_all(tmp);
-      fs::create_directories(tmp);
+      // p4est aborts the program on a failed write: check first
+      const fs::path parent  = directory.parent_path().empty() ? "." : directory.parent_path();
+      std::string    problem = fs::is_directory(parent) ? write_problem(parent.string(), bytes, bytes) : "";
+      if (problem.empty())
+        {
+          std::error_code error;
+          fs::remove_all(tmp, error);
+          if (!error)
+            fs::create_directories(tmp, error);
+          if (error)
+            problem = error.message();
+        }
+      if (!problem.empty())
+        throw std::runtime_error("cannot write the checkpoint '" + tmp.string() + "': " + problem +
+                                 ". The previous checkpoint, if any, is kept.");
     });
 
     particle_handler->prepare_for_serialization();
@@ -164,6 +189,7 @@ namespace sable::mpm
     state.n_particles             = particle_handler->n_global_particles();
     state.run                     = this->state;
     state.wall_heat = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
+    state.scene_entries           = parameters.scene_entries;
     state.particle_files          = particle_series.files;
     state.contact_node_files        = contact_node_series.files;
     state.contact_node_xdmf_entries = contact_node_series.xdmf_entries;
@@ -235,11 +261,27 @@ namespace sable::mpm
       return "cannot resume from '" + directory + "': it holds a scene with " + what + " " +
              saved + ", the parameter file gives " + now;
     };
-    require(state.format == SavedState<dim>::current_format && state.dimension == dim,
-            mismatch("format/dimension",
-                     std::to_string(state.format) + "/" + std::to_string(state.dimension),
-                     std::to_string(SavedState<dim>::current_format) +
-                       " (this version of sable)/" + std::to_string(dim)));
+    require(state.format == SavedState<dim>::current_format,
+            "cannot resume from '" + directory + "': its checkpoint format is " +
+              std::to_string(state.format) + ", written by an earlier version of sable; this "
+              "version reads format " + std::to_string(SavedState<dim>::current_format) +
+              " only. Start the run again (with --overwrite), or resume it with the version "
+              "that wrote the checkpoint.");
+    require(state.dimension == dim,
+            mismatch("Dimension =", std::to_string(state.dimension), std::to_string(dim)));
+    if (!state.scene_entries.empty() && !parameters.scene_entries.empty())
+      {
+        const std::string differences =
+          entry_differences(state.scene_entries, parameters.scene_entries, may_change_on_resume);
+        require(differences.empty(),
+                "cannot resume from '" + directory +
+                  "': the scene differs from the one the checkpoint was written with:" +
+                  differences +
+                  "\nOnly the time limits (Time/End time, Time/Maximum number of steps, "
+                  "Time/CFL number), the Output entries besides the Output format, Threads "
+                  "and Solver/Balance particles across ranks may change on resume. Give these "
+                  "entries their earlier values, or start the run again with --overwrite.");
+      }
     require(state.n_bodies == parameters.bodies.size(),
             mismatch("'Number of bodies' =",
                      std::to_string(state.n_bodies),

@@ -2,6 +2,7 @@
 
 #include <sable/base/common_parameters.h>
 #include <sable/base/input_error.h>
+#include <sable/base/parameter_file.h>
 #include <sable/base/named_choice.h>
 #include <sable/mpm/parameter_tools.h>
 #include <sable/mpm/parameters.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace sable::mpm
@@ -31,7 +33,11 @@ namespace sable::mpm
                       Patterns::Anything(),
                       "Directory for all output of the run, created after "
                       "the parameters are checked. Empty: output/<name of "
-                      "the parameter file without .prm>.");
+                      "the parameter file without .prm>. A run does not "
+                      "start if it holds an earlier run's outputs (sable "
+                      "--overwrite removes them, --resume continues that "
+                      "run) or another run writes into it (the lock file "
+                      "sable.lock).");
     prm.declare_entry("Number of bodies",
                       "1",
                       Patterns::Integer(1, 1000000),
@@ -215,6 +221,19 @@ namespace sable::mpm
       }
   }
 
+  bool
+  may_change_on_resume(const std::string &name)
+  {
+    static const std::set<std::string> free = {"Threads",
+                                               "Output directory",
+                                               "Time/End time",
+                                               "Time/Maximum number of steps",
+                                               "Time/CFL number",
+                                               "Solver/Balance particles across ranks",
+                                               "Solver/Settling steps"};
+    return free.count(name) > 0 || (name.rfind("Output/", 0) == 0 && name != "Output/Output format");
+  }
+
   template <int dim>
   void
   check_parameters(const SimulatorParameters<dim> &p)
@@ -250,14 +269,14 @@ namespace sable::mpm
       ParameterHandler prm;
       declare_common_parameters(prm);
       declare_parameters<dim>(prm, 0);
-      prm.parse_input(filename, "", /*skip_undefined=*/true);
+      parse_parameter_file(prm, filename, /*skip_undefined=*/true);
       apply_parameter_settings(prm, settings, /*skip_undeclared=*/true);
       n_bodies = prm.get_integer("Number of bodies");
     }
     ParameterHandler prm;
     declare_common_parameters(prm);
     declare_parameters<dim>(prm, n_bodies);
-    prm.parse_input(filename);
+    parse_parameter_file(prm, filename);
     apply_parameter_settings(prm, settings);
 
     Scene<dim>                scene;
@@ -289,6 +308,7 @@ namespace sable::mpm
       grid.subdivisions.push_back(n);
     for (const int id : Utilities::string_to_int(Utilities::split_string_list(prm.get("Boundary ids"))))
       grid.face_ids.push_back(id);
+    const std::string grid_ids = prm.get("Boundary ids");
     const std::string grid_box =
       "[" + prm.get("Lower corner") + "] - [" + prm.get("Upper corner") + "]";
     for (unsigned int d = 0; d < dim; ++d)
@@ -300,6 +320,19 @@ namespace sable::mpm
 
     prm.enter_subsection("Boundary conditions");
     p.boundaries = BoundaryParameters<dim>::parse_parameters(prm);
+    {
+      // a condition on an id no face has would silently do nothing
+      const std::set<types::boundary_id> ids(grid.face_ids.begin(), grid.face_ids.end());
+      std::string                        allowed;
+      for (const types::boundary_id id : ids)
+        allowed += (allowed.empty() ? "" : ", ") + std::to_string(id);
+      for (const auto &[id, type] : split_map(prm.get("Types")))
+        check_input(ids.count(std::stoi(id)) > 0,
+                    "Boundary conditions/Types",
+                    id + ": " + type,
+                    "boundary ids of the grid's faces, " + allowed + " (Grid/Boundary ids = " +
+                      grid_ids + ")");
+    }
     prm.leave_subsection();
 
     prm.enter_subsection("Contact");
@@ -336,6 +369,7 @@ namespace sable::mpm
         p.bodies.push_back(body);
       }
     check_parameters(p);
+    p.scene_entries = parameter_entries(prm);
 
     // every body inside the grid (the grid is the scene's, not a parameter
     // of the Simulator, which checks its own triangulation)

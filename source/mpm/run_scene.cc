@@ -1,6 +1,7 @@
 #include <deal.II/grid/grid_generator.h>
 
 #include <sable/mpm/checkpoint.h>
+#include <sable/mpm/memory_estimate.h>
 #include <sable/mpm/run_scene.h>
 #include <sable/mpm/simulator.h>
 
@@ -45,12 +46,19 @@ namespace sable::mpm
   void
   run_scene(const std::string &                  filename,
             MPI_Comm                             communicator,
-            const bool                           resume,
+            const OutputMode                     mode,
             const std::vector<ParameterSetting> &settings)
   {
-    const Scene<dim> scene = read_scene<dim>(filename, settings);
-    // the checkpoint to resume from, before any work
-    const std::string checkpoint =
+    const bool       resume = mode == OutputMode::resume;
+    const Scene<dim> scene  = read_scene<dim>(filename, settings);
+    check_memory(scene, communicator);
+    // the output directory (locked for the run) and the checkpoint to
+    // resume from, before any work
+    const OutputDirectory output_directory(scene.simulator.output_directory,
+                                           mode,
+                                           communicator,
+                                           std::cout);
+    const std::string     checkpoint =
       resume ? find_checkpoint(scene.simulator.output_directory, communicator, std::cout) : "";
     parallel::distributed::Triangulation<dim> triangulation(communicator);
     make_grid(scene.grid, triangulation, /*refine=*/!resume);
@@ -76,7 +84,7 @@ namespace sable::mpm
   template unsigned int
   make_grid<3>(const GridParameters<3> &, parallel::distributed::Triangulation<3> &, bool);
   template void
-  run_scene<2>(const std::string &, MPI_Comm, bool, const std::vector<ParameterSetting> &);
+  run_scene<2>(const std::string &, MPI_Comm, OutputMode, const std::vector<ParameterSetting> &);
   template void
-  run_scene<3>(const std::string &, MPI_Comm, bool, const std::vector<ParameterSetting> &);
+  run_scene<3>(const std::string &, MPI_Comm, OutputMode, const std::vector<ParameterSetting> &);
 } // namespace sable::mpm

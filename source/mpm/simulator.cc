@@ -4,7 +4,9 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/particles/data_out.h>
 
+#include <sable/base/checkpoint_directory.h>
 #include <sable/base/input_error.h>
+#include <sable/base/write_check.h>
 #include <sable/mpm/postprocess/contact_node_output.h>
 #include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/seeding.h>
@@ -147,7 +149,8 @@ namespace sable::mpm
       contact != nullptr,
       parameters.contact.reported_pairs,
       write && Utilities::MPI::this_mpi_process(communicator) == 0,
-      append);
+      append,
+      communicator);
   }
 
   template <int dim>
@@ -647,6 +650,18 @@ namespace sable::mpm
   Simulator<dim>::write_particles()
   {
     TimerOutput::Scope     scope(timer, "output");
+    {
+      // deal.II and MPI-IO abort on a failed write: check first (the
+      // positions alone, as floats, give a lower bound of the size)
+      const double bytes = double(particle_handler->n_global_particles()) * dim * sizeof(float);
+      const double ranks = Utilities::MPI::n_mpi_processes(communicator);
+      on_root(communicator, [&]() {
+        const std::string problem = write_problem(parameters.output_directory, bytes, bytes / ranks);
+        if (!problem.empty())
+          throw std::runtime_error("cannot write the particle output into '" +
+                                   parameters.output_directory + "': " + problem);
+      });
+    }
     Particles::DataOut<dim> data_out;
     std::vector<std::string> history_names;
     for (const auto &material : materials)

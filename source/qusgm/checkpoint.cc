@@ -25,7 +25,8 @@ namespace sable::qusgm
 
     const char *const              state_file     = "qusgm.state";
     const std::vector<std::string> required_files = {state_file};
-    constexpr unsigned int         format         = 1;
+    /// 2: the scene's entries in the progress (1: without)
+    constexpr unsigned int         format         = 2;
 
     /// Everything of a Simulation that the next increment depends on.
     struct SavedSimulation
@@ -49,7 +50,11 @@ namespace sable::qusgm
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar &format &n_grains &pack &walls &model;
+        ar &format;
+        // an older format is reported by load_state(), not misread
+        if (format != qusgm::format)
+          return;
+        ar &n_grains &pack &walls &model;
         for (double &x : undeformed_lengths)
           ar &x;
         ar &last_macroscopic &last_bulk_modulus &last_shear_modulus &n_increments &axis
@@ -102,8 +107,16 @@ namespace sable::qusgm
       boost::archive::binary_iarchive archive(in);
       archive >> saved;
     }
-    if (saved.format != format || saved.n_grains != saved.pack.size())
-      throw std::runtime_error("unknown format " + std::to_string(saved.format));
+    if (saved.format != format)
+      throw std::runtime_error("its checkpoint format is " + std::to_string(saved.format) +
+                               ", written by an earlier version of sable; this version reads "
+                               "format " + std::to_string(format) +
+                               " only. Start the run again (with --overwrite), or resume it "
+                               "with the version that wrote the checkpoint.");
+    if (saved.n_grains != saved.pack.size())
+      throw std::runtime_error("its state is damaged (" + std::to_string(saved.n_grains) +
+                               " grains announced, " + std::to_string(saved.pack.size()) +
+                               " read)");
     if (saved.n_grains != pack.size())
       throw std::runtime_error("it holds a pack of " + std::to_string(saved.n_grains) +
                                " grains, the parameter file gives " +
@@ -158,6 +171,14 @@ namespace sable::qusgm
   }
 
 
+  bool
+  may_change_on_resume(const std::string &name)
+  {
+    return name == "Threads" || name == "Output directory" ||
+           name == "Load path/Number of increments" || name.rfind("Output/", 0) == 0;
+  }
+
+
   std::string
   find_checkpoint(const std::string &output_directory,
                   const MPI_Comm     communicator,
@@ -180,8 +201,10 @@ namespace sable::qusgm
       {
         std::ifstream                   in(fs::path(directory) / state_file, std::ios::binary);
         boost::archive::binary_iarchive archive(in);
-        archive >> state >> progress;
+        // the state first: it tells an older format
+        archive >> state;
         simulation.load_state(state);
+        archive >> progress;
       }
     catch (const std::exception &e)
       {

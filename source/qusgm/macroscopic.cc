@@ -3,7 +3,9 @@
 
 #include <sable/qusgm/macroscopic.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <iomanip>
 #include <limits>
 
@@ -68,8 +70,11 @@ namespace sable::qusgm
   }
 
   IncrementTable::IncrementTable(const std::string &filename, const bool append)
-    : out(filename, append ? std::ios::app : std::ios::out)
+    : filename(filename)
+    , out(filename, append ? std::ios::app : std::ios::out)
   {
+    if (!out)
+      failure = "cannot write '" + filename + "': " + std::strerror(errno);
     if (!append)
       out << "increment,stage,strain_x,strain_y,strain_z,stress_x,stress_y,"
              "stress_z,nominal_stress_x,nominal_stress_y,nominal_stress_z,"
@@ -115,6 +120,9 @@ namespace sable::qusgm
     field(wall_time);
     out << ',' << result.stopped_by << '\n';
     out.flush();
+    if (!out && failure.empty())
+      failure = "cannot write '" + filename + "' (increment " + std::to_string(increment) +
+                "): " + std::strerror(errno);
   }
 
   void

@@ -8,6 +8,7 @@
 #include <deal.II/base/timer.h>
 
 #include <sable/base/input_error.h>
+#include <sable/base/parameter_file.h>
 #include <sable/base/common_parameters.h>
 #include <sable/qusgm/load_path.h>
 #include <sable/qusgm/pack_io.h>
@@ -35,7 +36,11 @@ namespace sable::qusgm
     prm.declare_entry("Output directory", "",
                       Patterns::Anything(),
                       "Where the run writes increments.csv, the grain VTU "
-                      "files and the final pack. Empty: output/<scene name>.");
+                      "files and the final pack. Empty: output/<scene name>. "
+                      "A run does not start if it holds an earlier run's "
+                      "outputs (sable --overwrite removes them, --resume "
+                      "continues that run) or another run writes into it "
+                      "(the lock file sable.lock).");
     prm.enter_subsection("Pack");
     {
       prm.declare_entry("Source", "generate", Patterns::Selection("generate|file|state"),
@@ -250,9 +255,10 @@ namespace sable::qusgm
   void
   run_scene(const std::string &                  filename,
             MPI_Comm                             communicator,
-            const bool                           resume,
+            const OutputMode                     mode,
             const std::vector<ParameterSetting> &parameter_settings)
   {
+    const bool resume = mode == OutputMode::resume;
     const auto start = std::chrono::steady_clock::now();
     const bool root  = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
     const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(communicator);
@@ -262,7 +268,7 @@ namespace sable::qusgm
     declare_parameters(prm);
     try
       {
-        prm.parse_input(filename);
+        parse_parameter_file(prm, filename);
       }
     catch (const dealii::ExceptionBase &e)
       {
@@ -272,6 +278,8 @@ namespace sable::qusgm
                          "': " + message.str());
       }
     apply_parameter_settings(prm, parameter_settings);
+    // what a checkpoint keeps and a resume compares
+    const std::vector<std::pair<std::string, std::string>> entries = parameter_entries(prm);
 
     // --- Read and check everything before any work or output.
     ContactModel model;
@@ -517,15 +525,14 @@ namespace sable::qusgm
       }
     pack.check("Pack");
 
-    // The checkpoint to resume from, before any work.
-    const std::string checkpoint =
+    // The output directory (locked for the run) and the checkpoint to
+    // resume from, before any work.
+    const OutputDirectory output_directory(output, mode, communicator, std::cout);
+    const std::string     checkpoint =
       resume ? find_checkpoint(output, communicator, std::cout) : std::string();
 
     // --- Work and output. Every rank runs the whole scene (the grains'
     // contacts are shared out, see GrainPartition); the first one writes.
-    if (root)
-      std::filesystem::create_directories(output);
-    MPI_Barrier(communicator);
     dealii::ConditionalOStream out(std::cout, root);
     dealii::TimerOutput timer(out, dealii::TimerOutput::never,
                               dealii::TimerOutput::wall_times);
@@ -551,6 +558,17 @@ namespace sable::qusgm
     if (resume)
       {
         progress = load_checkpoint(sim, checkpoint);
+        // the checkpoint's scene, not another one (its pack, walls and
+        // contact model would silently replace the file's)
+        const std::string differences =
+          entry_differences(progress.scene_entries, entries, may_change_on_resume);
+        if (!differences.empty())
+          throw std::runtime_error(
+            "cannot resume from '" + checkpoint +
+            "': the scene differs from the one the checkpoint was written with:" + differences +
+            "\nOnly Load path/Number of increments, the Output entries, Threads and the "
+            "Output directory may change on resume. Give these entries their earlier values, or "
+            "start the run again with --overwrite.");
         // the table as it was at the checkpoint, continued from there
         const unsigned int rows = sim.n_increments;
         on_root(communicator, [&]() {
@@ -560,6 +578,7 @@ namespace sable::qusgm
         out << "Resumed from " << checkpoint << " after " << progress.load_increments
             << " increment(s) of the load path (" << rows << " in increments.csv)" << std::endl;
       }
+    progress.scene_entries = entries;
     if (root)
       sim.open_table(output + "/increments.csv", resume);
     if (iteration_log)

@@ -1,3 +1,5 @@
+#include <deal.II/base/mpi.h>
+
 #include <sable/qusgm/load_path.h>
 #include <sable/qusgm/simulation.h>
 
@@ -5,6 +7,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
 namespace sable::qusgm
 {
@@ -204,6 +207,13 @@ namespace sable::qusgm
                    record.shear_modulus,
                    record.result,
                    record.wall_time);
+    // a row that cannot be written (a full disk) stops the run on every
+    // rank (rank 0 writes the table; a program without MPI has one)
+    std::string problem = table ? table->problem() : std::string();
+    if (dealii::Utilities::MPI::job_supports_mpi())
+      problem = dealii::Utilities::MPI::broadcast(communicator, problem, 0);
+    if (!problem.empty())
+      throw std::runtime_error(problem);
 
     // The progress line; an undefined value is shown as "-".
     const auto &m     = record.macroscopic;

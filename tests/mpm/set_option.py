@@ -91,7 +91,7 @@ smaller = ["--set", "Pack/Number of grains=60", "--set", "Preparation/Target con
            "--set", "Preparation/Maximum activation increments=5"]
 for increments in (1, 2):
     directory = os.path.join(WORK, f"qusgm_{increments}")
-    result = subprocess.run([SABLE, scene, "--set", f"Output directory={directory}",
+    result = subprocess.run([SABLE, scene, "--overwrite", "--set", f"Output directory={directory}",
                              "--set", f"Load path/Number of increments={increments}"] + smaller,
                             capture_output=True, text=True)
     tested = []

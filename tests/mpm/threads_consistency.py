@@ -20,6 +20,7 @@ A bad thread count stops with a message naming the option."""
 import csv
 import io
 import os
+import shutil
 import subprocess
 
 from scene_test import *
@@ -37,7 +38,8 @@ bodies = [dict(plastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity=
 
 def run_with(name, arguments, environment, scene=(entries, bodies)):
     directory = os.path.join(WORK, name)
-    os.makedirs(directory, exist_ok=True)
+    shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory)
     with open(os.path.join(directory, "scene.prm"), "w") as f:
         f.write(prm_text(*scene))
     env = dict(os.environ, **environment)

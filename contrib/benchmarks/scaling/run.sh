@@ -91,9 +91,9 @@ for case in "2 256" "3 32"; do
   all_a=(); all_b=(); all_c=()
   for r in $(seq "$repeats"); do
     l="$(load), $(wait_quiet)"
-    "$build/sable" --threads 1 "$work/s.prm" > "$work/a.log"
-    "${mpirun[@]}" -np 2 "$build/sable" --threads 1 "$work/s.prm" > "$work/b.log"
-    "$build/sable" --threads 2 "$work/s.prm" > "$work/c.log"
+    "$build/sable" --overwrite --threads 1 "$work/s.prm" > "$work/a.log"
+    "${mpirun[@]}" -np 2 "$build/sable" --overwrite --threads 1 "$work/s.prm" > "$work/b.log"
+    "$build/sable" --overwrite --threads 2 "$work/s.prm" > "$work/c.log"
     a=$(seconds "$work/a.log"); b=$(seconds "$work/b.log"); c=$(seconds "$work/c.log")
     all_a+=("$a"); all_b+=("$b"); all_c+=("$c")
     echo "MPM ${1}D run $r (load $l): 1x1 $a s, 2 ranks $b s (x$(ratio "$a" "$b")), 2 threads $c s (x$(ratio "$a" "$c"))"
@@ -110,10 +110,10 @@ done
 for r in $(seq "$repeats"); do
   q="$(load), $(wait_quiet)"
   scene 2 256 0.5 true > "$work/s.prm"
-  "$build/sable" "$work/s.prm" > "$work/a.log"
-  "${mpirun[@]}" -np 2 "$build/sable" "$work/s.prm" > "$work/b.log"
+  "$build/sable" --overwrite "$work/s.prm" > "$work/a.log"
+  "${mpirun[@]}" -np 2 "$build/sable" --overwrite "$work/s.prm" > "$work/b.log"
   scene 2 256 0.5 false > "$work/s.prm"
-  "${mpirun[@]}" -np 2 "$build/sable" "$work/s.prm" > "$work/c.log"
+  "${mpirun[@]}" -np 2 "$build/sable" --overwrite "$work/s.prm" > "$work/c.log"
   a=$(seconds "$work/a.log"); b=$(seconds "$work/b.log"); c=$(seconds "$work/c.log")
   echo "MPM 2D, points in a quarter, run $r (load $q): 1 rank $a s; 2 ranks balanced $b s (x$(ratio "$a" "$b")), unbalanced $c s (x$(ratio "$a" "$c"))"
   [ "$r" = 1 ] && grep 'particles per rank' "$work/b.log" | sed 's/^/  balanced:   /' &&
@@ -123,8 +123,8 @@ done
 # cost per cell and per material point (one rank, one thread): the full
 # box (65,536 cells, 262,144 points) and a box in 1/16 of it (16,384 points)
 for r in $(seq "$repeats"); do
-  scene 2 256 1 > "$work/s.prm"; "$build/sable" "$work/s.prm" > "$work/a.log"
-  scene 2 256 0.25 > "$work/s.prm"; "$build/sable" "$work/s.prm" > "$work/b.log"
+  scene 2 256 1 > "$work/s.prm"; "$build/sable" --overwrite "$work/s.prm" > "$work/a.log"
+  scene 2 256 0.25 > "$work/s.prm"; "$build/sable" --overwrite "$work/s.prm" > "$work/b.log"
   a=$(seconds "$work/a.log"); b=$(seconds "$work/b.log")
   python3 - "$a" "$b" <<'PY'
 import sys

@@ -88,7 +88,7 @@ for scene in box pile; do
   for r in $(seq "$repeats"); do
     echo "# $scene run $r: load $(cut -d' ' -f1 /proc/loadavg), $(wait_quiet) before"
     for t in 1 2; do
-      "$build/sable" --threads "$t" "$work/$scene.prm" > "$work/log"
+      "$build/sable" --overwrite --threads "$t" "$work/$scene.prm" > "$work/log"
       echo "$scene run $r, $t thread(s) (load $(cut -d' ' -f1 /proc/loadavg)):" \
         "particles to grid $(section "$work/log" 'particles to grid') s" \
         "(finding contact nodes $(section "$work/log" 'find contact nodes \(in particles to grid\)') s)," \

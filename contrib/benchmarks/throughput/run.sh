@@ -51,7 +51,7 @@ PRM
 for case in "2 256" "3 32"; do
   set -- $case
   scene "$1" "$2" > "$work/scene$1.prm"
-  /usr/bin/time -v "$build/sable" "$work/scene$1.prm" > "$work/log$1" 2> "$work/time$1"
+  /usr/bin/time -v "$build/sable" --overwrite "$work/scene$1.prm" > "$work/log$1" 2> "$work/time$1"
   particles=$(grep -o '[0-9]* material points' "$work/log$1" | cut -d' ' -f1)
   seconds=$(grep -o 'in [0-9.e+-]* s wall time' "$work/log$1" | awk '{print $2}')
   memory=$(grep 'Maximum resident' "$work/time$1" | awk '{print $NF}')

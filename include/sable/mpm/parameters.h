@@ -100,7 +100,21 @@ namespace sable::mpm
     bool allow_outflow = false;
 
     std::vector<BodyParameters<dim>> bodies;
+
+    /// The scene's entries as ("Subsection/Entry", value) (read_scene()
+    /// fills them from the parameter file): a checkpoint keeps them, and
+    /// Simulator::resume() refuses a scene whose entries differ in more
+    /// than may_change_on_resume() allows. Empty: not compared.
+    std::vector<std::pair<std::string, std::string>> scene_entries;
   };
+
+  /// Whether the entry @p name ("Subsection/Entry") may have another value
+  /// when a run is resumed: the time limits and CFL number, the output
+  /// (besides its format), threads and load balancing. Materials, bodies,
+  /// the grid, boundaries, contact, refinement, gravity and the update
+  /// scheme may not.
+  bool
+  may_change_on_resume(const std::string &name);
 
   /// Declare every MPM entry (besides the common ones) for @p n_bodies bodies.
   template <int dim>

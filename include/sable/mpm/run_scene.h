@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
 
+#include <sable/base/output_directory.h>
 #include <sable/mpm/parameters.h>
 
 #include <string>
@@ -28,13 +29,14 @@ namespace sable::mpm
             bool                                       refine = true);
 
   /// Read, check and run the MPM scene in @p filename, with the entries of
-  /// @p settings (`--set`) changed; with @p resume, continue it from the
-  /// last checkpoint in its output directory.
+  /// @p settings (`--set`) changed. @p mode says what happens to an earlier
+  /// run's results in the output directory (see OutputDirectory):
+  /// OutputMode::resume continues that run from its last checkpoint.
   template <int dim>
   void
   run_scene(const std::string &                  filename,
             MPI_Comm                             communicator,
-            const bool                           resume   = false,
+            OutputMode                           mode     = OutputMode::fresh,
             const std::vector<ParameterSetting> &settings = {});
 } // namespace sable::mpm
 

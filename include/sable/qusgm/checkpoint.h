@@ -21,14 +21,22 @@ namespace sable::qusgm
   {
     unsigned int load_increments = 0; ///< done (0: the pack is prepared)
     std::vector<std::pair<double, std::string>> grain_files, contact_files;
+    /// The scene's entries (sable::parameter_entries()), compared on resume.
+    std::vector<std::pair<std::string, std::string>> scene_entries;
 
     template <class Archive>
     void
     serialize(Archive &ar, const unsigned int)
     {
-      ar &load_increments &grain_files &contact_files;
+      ar &load_increments &grain_files &contact_files &scene_entries;
     }
   };
+
+  /// Whether the entry @p name ("Subsection/Entry") may have another value
+  /// when a QuSGM run is resumed: the number of increments of the load
+  /// path, the Output entries, threads and the output directory.
+  bool
+  may_change_on_resume(const std::string &name);
 
   /**
    * Write `<output_directory>/checkpoint`: the file `qusgm.state` (a
@@ -54,8 +62,9 @@ namespace sable::qusgm
 
   /**
    * Restore @p simulation from the checkpoint @p directory and return the
-   * progress. Throws std::runtime_error naming the directory if it does
-   * not belong to a pack of @p simulation's number of grains.
+   * progress. Throws std::runtime_error naming the directory if it is of an
+   * older format or does not belong to a pack of @p simulation's number of
+   * grains.
    */
   RunProgress
   load_checkpoint(Simulation &simulation, const std::string &directory);

@@ -88,8 +88,18 @@ namespace sable::qusgm
           const IncrementResult   &result,
           double                   wall_time);
 
+    /// Why the rows so far could not all be written (a full disk), naming
+    /// the file; empty if they were.
+    const std::string &
+    problem() const
+    {
+      return failure;
+    }
+
   private:
+    std::string   filename;
     std::ofstream out;
+    std::string   failure;
   };
 
   /// Grains as points with radius, coordination and residual (VTU).

@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <sable/base/output_directory.h>
 #include <sable/base/parameter_settings.h>
 
 #include <string>
@@ -16,13 +17,15 @@ namespace sable::qusgm
 
   /**
    * Read, check and run the QuSGM scene in @p filename, with the entries of
-   * @p settings (`--set`) changed after the file is read; with @p resume,
-   * continue from the last checkpoint in its output directory.
+   * @p settings (`--set`) changed after the file is read. @p mode says what
+   * happens to an earlier run's results in the output directory (see
+   * OutputDirectory): OutputMode::resume continues that run from its last
+   * checkpoint.
    */
   void
   run_scene(const std::string &                  filename,
             MPI_Comm                             communicator,
-            bool                                 resume   = false,
+            OutputMode                           mode     = OutputMode::fresh,
             const std::vector<ParameterSetting> &settings = {});
 } // namespace sable::qusgm
 

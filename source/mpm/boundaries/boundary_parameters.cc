@@ -32,7 +32,8 @@ namespace sable::mpm
                       "",
                       Patterns::Map(Patterns::Integer(0, 255), boundary_types.pattern()),
                       "Condition per boundary id, e.g. '0: slip, 2: "
-                      "friction'. Ids not listed are free.");
+                      "friction'. Ids not listed are free; an id no face of "
+                      "the grid has (Grid/Boundary ids) is refused.");
     prm.declare_entry("Friction coefficients",
                       "",
                       Patterns::Map(Patterns::Integer(0, 255), Patterns::Double()),

@@ -2,6 +2,10 @@
 
 #include <sable/mpm/postprocess/statistics.h>
 
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
 #include <iomanip>
 
 namespace sable::mpm
@@ -13,7 +17,10 @@ namespace sable::mpm
     const bool                                                with_contact,
     const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
     const bool                                                write,
-    const bool                                                append)
+    const bool                                                append,
+    MPI_Comm                                                  communicator)
+    : filename(filename)
+    , communicator(communicator)
   {
     // the columns: name and value, in the order of the file
     const auto add = [this](const std::string &name, std::function<double(const Row &)> value) {
@@ -61,6 +68,9 @@ namespace sable::mpm
     if (!write)
       return;
     file = std::make_unique<std::ofstream>(filename, append ? std::ios::app : std::ios::out);
+    // reported by the first write_row(), on every rank
+    if (!*file)
+      failure = "cannot write '" + filename + "': " + std::strerror(errno);
     if (!append)
       for (unsigned int c = 0; c < columns.size(); ++c)
         *file << (c ? "," : "") << columns[c].name << (c + 1 == columns.size() ? "\n" : "");
@@ -75,13 +85,21 @@ namespace sable::mpm
                                  const double            boundary_work,
                                  const Statistics<dim> &s)
   {
-    if (!file)
-      return;
-    const Row row{step, time, dt, boundary_work, s};
-    for (unsigned int c = 0; c < columns.size(); ++c)
-      *file << (c ? "," : "") << columns[c].value(row);
-    *file << '\n';
-    file->flush();
+    std::string error = failure;
+    if (file && error.empty())
+      {
+        const Row row{step, time, dt, boundary_work, s};
+        for (unsigned int c = 0; c < columns.size(); ++c)
+          *file << (c ? "," : "") << columns[c].value(row);
+        *file << '\n';
+        file->flush();
+        if (!*file)
+          error = "cannot write '" + filename + "' (step " + std::to_string(step) +
+                  "): " + std::strerror(errno) + "; the rows up to the step before are complete";
+      }
+    error = Utilities::MPI::broadcast(communicator, error, 0);
+    if (!error.empty())
+      throw std::runtime_error(error);
   }
 
   template <int dim>

@@ -63,6 +63,9 @@ namespace sable::mpm
    * conventions). Only rank 0 writes; every value with 17 significant
    * digits so runs can be compared to round-off. With @p append (a resumed
    * run) the rows go after those already in the file, without a header.
+   * write_row() is collective over @p communicator: a row that cannot be
+   * written (a full disk) is a std::runtime_error naming the file on every
+   * rank.
    */
   template <int dim>
   class StatisticsFile
@@ -73,7 +76,8 @@ namespace sable::mpm
                    const bool         with_contact,
                    const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
                    const bool         write,
-                   const bool         append = false);
+                   const bool         append       = false,
+                   MPI_Comm           communicator = MPI_COMM_SELF);
 
     void
     write_row(const unsigned int       step,
@@ -100,6 +104,9 @@ namespace sable::mpm
     /// the file's columns, in order: the header and every row come from it
     std::vector<Column>            columns;
     std::unique_ptr<std::ofstream> file;
+    std::string                    filename;
+    MPI_Comm                       communicator;
+    std::string                    failure; ///< the file could not be opened
   };
   /**
    * Energies, momentum and per-body centre of mass, velocity and angular
