@@ -35,7 +35,7 @@ namespace sable::mpm
   template <bool update_positions, bool update_strain_rates>
   typename GridToParticle<dim>::Report
   GridToParticle<dim>::transfer(Particles::ParticleHandler<dim> &particle_handler,
-                                const CellList &                 cells,
+                                const ParticleCells<dim> &       cells,
                                 const MultiBodyContact<dim> *    contact,
                                 const double                     time_step,
                                 const double                     alpha) const
@@ -50,14 +50,14 @@ namespace sable::mpm
     std::mutex report_mutex;
     parallel::apply_to_subranges(
       0u,
-      static_cast<unsigned int>(cells.size()),
+      cells.n_owned(),
       [&](const unsigned int begin, const unsigned int end) {
         Report                    local;
         typename Grid<dim>::Shape shape;
         for (unsigned int c = begin; c < end; ++c)
           {
-            const typename Grid<dim>::CellData &data = grid.cell_data(cells[c]);
-            for (auto &particle : particle_handler.particles_in_cell(cells[c]))
+            const typename Grid<dim>::CellData &data = *cells[c].data;
+            for (auto &particle : cells[c].particles)
               {
                 const auto         props = particle.get_properties();
                 const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
@@ -129,7 +129,7 @@ namespace sable::mpm
 #define SABLE_INSTANTIATE(dim, positions, strain_rates)                                   \
   template GridToParticle<dim>::Report                                                    \
   GridToParticle<dim>::transfer<positions, strain_rates>(Particles::ParticleHandler<dim> &, \
-                                                         const CellList &,                \
+                                                         const ParticleCells<dim> &,      \
                                                          const MultiBodyContact<dim> *,   \
                                                          const double,                    \
                                                          const double) const;

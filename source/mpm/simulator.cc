@@ -329,8 +329,9 @@ namespace sable::mpm
   void
   Simulator<dim>::advance()
   {
-    state.time_step      = compute_time_step();
-    cells_with_particles = collect_cells_with_particles();
+    state.time_step = compute_time_step();
+    // the container changed in the last sort, ghost exchange or mesh change
+    particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
     scatter_momenta_and_forces();
     update_nodal_velocities();
     if (parameters.update_scheme == UpdateScheme::usl)
@@ -360,17 +361,6 @@ namespace sable::mpm
   }
 
   template <int dim>
-  typename Simulator<dim>::CellList
-  Simulator<dim>::collect_cells_with_particles() const
-  {
-    CellList cells;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && particle_handler->n_particles_in_cell(cell) > 0)
-        cells.push_back(cell);
-    return cells;
-  }
-
-  template <int dim>
   void
   Simulator<dim>::scatter_momenta_and_forces()
   {
@@ -383,7 +373,7 @@ namespace sable::mpm
                                     grid,
                                     layout);
       }
-    particle_to_grid.template scatter<GridPass::momentum_update>(*particle_handler,
+    particle_to_grid.template scatter<GridPass::momentum_update>(particle_cells,
                                                                  grid,
                                                                  nodal_fields,
                                                                  contact.get());
@@ -420,7 +410,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "grid to particles");
     process_report(grid_to_particle.update_particles_and_strain_rates(*particle_handler,
-                                                                      cells_with_particles,
+                                                                      particle_cells,
                                                                       contact.get(),
                                                                       state.time_step,
                                                                       parameters.pic_fraction),
@@ -433,7 +423,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "grid to particles");
     process_report(grid_to_particle.update_velocities_and_positions(*particle_handler,
-                                                                    cells_with_particles,
+                                                                    particle_cells,
                                                                     contact.get(),
                                                                     state.time_step,
                                                                     parameters.pic_fraction),
@@ -451,7 +441,7 @@ namespace sable::mpm
           particle_handler->update_ghost_particles();
         contact->begin_remap();
       }
-    particle_to_grid.template scatter<GridPass::remapped_momenta>(*particle_handler,
+    particle_to_grid.template scatter<GridPass::remapped_momenta>(particle_cells,
                                                                   grid,
                                                                   nodal_fields,
                                                                   contact.get());
@@ -483,7 +473,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "grid to particles");
     process_report(
-      grid_to_particle.compute_strain_rates(*particle_handler, cells_with_particles, contact.get()),
+      grid_to_particle.compute_strain_rates(*particle_handler, particle_cells, contact.get()),
       false);
   }
 
@@ -493,8 +483,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "stress update");
     const StressUpdate<dim> stress_update(materials, layout);
-    const auto              failure = stress_update.update(*particle_handler,
-                                                           cells_with_particles,
+    const auto              failure = stress_update.update(particle_cells,
                                                            velocity_gradients,
                                                            state.time_step);
     report_failure(failure.failed,

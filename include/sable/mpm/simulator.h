@@ -15,6 +15,7 @@
 #include <sable/mpm/materials/material.h>
 #include <sable/mpm/mesh_refinement.h>
 #include <sable/mpm/nodal_fields.h>
+#include <sable/mpm/particle_cells.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
 #include <sable/mpm/particle_to_grid.h>
@@ -193,8 +194,6 @@ namespace sable::mpm
     static constexpr unsigned int particle_cost = LoadBalance<dim>::particle_cost;
 
   private:
-    using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
-
     /// The phases of one step, in order (step() after initialize()).
     void
     advance();
@@ -208,9 +207,6 @@ namespace sable::mpm
     // --- the phases of step(), in order ---
     double
     compute_time_step() const;
-    /// The locally owned cells holding material points.
-    CellList
-    collect_cells_with_particles() const;
     /// Find the contact nodes, then scatter mass, momentum and internal
     /// forces to the single field and the bodies' fields.
     void
@@ -326,8 +322,8 @@ namespace sable::mpm
     /// strain update, from the grid-to-particle pass to the stress update
     std::vector<Tensor<2, dim>> velocity_gradients;
     GridToParticle<dim>         grid_to_particle;
-    /// the locally owned cells with material points, collected per step
-    CellList cells_with_particles;
+    /// the cells with material points, rebuilt at the start of each step
+    ParticleCells<dim> particle_cells;
     /// multi-body contact: only with a contact model and two or more bodies
     std::unique_ptr<MultiBodyContact<dim>> contact;
     /// only with refinement criteria
