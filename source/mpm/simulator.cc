@@ -682,14 +682,16 @@ namespace sable::mpm
     while (!finished())
       {
         step();
-        const bool last = finished();
-        const bool progress = state.step_number % parameters.progress_interval == 0 || last;
-        if (state.step_number % parameters.statistics_interval == 0 || progress)
+        const bool last       = finished();
+        const bool progress   = state.step_number % parameters.progress_interval == 0 || last;
+        const bool output_due = write_output && state.time >= state.next_output_time * (1 - 1e-12);
+        state.statistics_row_due = statistics_due(output_due);
+        if (state.statistics_row_due || progress)
           {
             TimerOutput::Scope    scope(timer, "statistics");
             const Statistics<dim> s = compute_statistics();
             check_energy(s);
-            if (state.step_number % parameters.statistics_interval == 0 || last)
+            if (state.statistics_row_due || last)
               statistics_file->write_row(
                 state.step_number, state.time, state.time_step, state.boundary_work, s);
             if (progress)
@@ -708,7 +710,6 @@ namespace sable::mpm
                       << std::defaultfloat << std::setprecision(6) << std::endl;
               }
           }
-        const bool output_due = write_output && state.time >= state.next_output_time * (1 - 1e-12);
         if (output_due)
           write_particles();
         // the checkpoint holds the state an uninterrupted run has at this
@@ -727,6 +728,15 @@ namespace sable::mpm
             << (write_checkpoints ? ", checkpoint/" : "") << ")" << std::endl;
     pcout << "Finished " << state.step_number << " steps to t = " << state.time << " in "
           << wall.wall_time() << " s wall time" << std::endl;
+  }
+
+  template <int dim>
+  bool
+  Simulator<dim>::statistics_due(const bool output_due) const
+  {
+    const unsigned int interval = parameters.statistics_interval;
+    return interval > 0 ? state.step_number % interval == 0 :
+                          output_due || state.step_number % parameters.progress_interval == 0;
   }
 
   template <int dim>

@@ -259,6 +259,10 @@ namespace sable::mpm
     /// Whether the end time or the step limit is reached.
     bool
     finished() const;
+    /// Whether 'Output/Statistics interval' asks for a row at this step
+    /// (interval 0: with particle output, @p output_due, and progress lines).
+    bool
+    statistics_due(const bool output_due) const;
     /// Size the nodal fields and colour the cells for the current grid.
     void
     allocate_nodal_data();
