@@ -27,6 +27,7 @@ namespace sable::mpm
   {
     max_signal_speed   = std::max(max_signal_speed, other.max_signal_speed);
     max_particle_speed = std::max(max_particle_speed, other.max_particle_speed);
+    n_left_cell += other.n_left_cell;
     if (other.not_finite || other.too_far)
       fail(other.too_far, other.failed_id, other.failure_location);
   }
@@ -56,8 +57,9 @@ namespace sable::mpm
         typename Grid<dim>::Shape shape;
         for (unsigned int c = begin; c < end; ++c)
           {
-            const typename Grid<dim>::CellData &data = *cells[c].data;
-            for (auto &particle : cells[c].particles)
+            const auto &                        cell = cells[c];
+            const typename Grid<dim>::CellData &data = *cell.data;
+            for (auto &particle : cell.particles)
               {
                 const auto         props = particle.get_properties();
                 const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
@@ -106,6 +108,7 @@ namespace sable::mpm
                         local.fail(true, particle.get_id(), location);
                     location += displacement;
                     particle.set_location(location);
+                    local.n_left_cell += !cell.contains(location);
                     local.max_signal_speed =
                       std::max(local.max_signal_speed, std::sqrt(speed2) + body_wave_speed[body]);
                     local.max_particle_speed =

@@ -25,7 +25,10 @@ namespace sable::mpm
           const auto         range = particle_handler.particles_in_cell(cell);
           const unsigned int index = cell->active_cell_index();
           slot[index]              = cells.size();
-          cells.push_back({cell, index, &grid.cell_data(cell), range, owned});
+          Point<dim>         lower = cell->vertex(0), upper;
+          for (unsigned int d = 0; d < dim; ++d)
+            upper[d] = cell->vertex(1u << d)[d];
+          cells.push_back({cell, index, &grid.cell_data(cell), range, owned, lower, upper});
           particle = range.end();
         }
     };
@@ -55,6 +58,28 @@ namespace sable::mpm
 
   template <int dim>
   void
-  ParticleCells<dim>::update_reference_locations() const  template class ParticleCells<2>;
+  ParticleCells<dim>::update_reference_locations() const
+  {
+    parallel::apply_to_subranges(
+      0u,
+      n_owned_cells,
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int c = begin; c < end; ++c)
+          {
+            const Cell &cell = cells[c];
+            for (auto &particle : cell.particles)
+              {
+                Point<dim> reference = particle.get_location();
+                reference -= cell.lower;
+                for (unsigned int d = 0; d < dim; ++d)
+                  reference[d] /= cell.upper[d] - cell.lower[d];
+                particle.set_reference_location(reference);
+              }
+          }
+      },
+      16);
+  }
+
+  template class ParticleCells<2>;
   template class ParticleCells<3>;
 } // namespace sable::mpm

@@ -500,16 +500,16 @@ namespace sable::mpm
     // takes part in the reductions, also one without points)
     if (moved)
       {
+        // with the fastest point's travel since the last adaptation, and
+        // whether any point left its cell (then the sort is due)
+        std::vector<double> maxima = {report.max_signal_speed,
+                                      report.max_particle_speed,
+                                      report.n_left_cell > 0 ? 1. : 0.};
+        Utilities::MPI::max(maxima, communicator, maxima);
+        state.max_signal_speed = maxima[0];
         if (mesh_refinement)
-          {
-            // the fastest point's travel since the last adaptation
-            std::vector<double> speeds = {report.max_signal_speed, report.max_particle_speed};
-            Utilities::MPI::max(speeds, communicator, speeds);
-            state.max_signal_speed = speeds[0];
-            state.travel_since_adaptation += speeds[1] * state.time_step;
-          }
-        else
-          state.max_signal_speed = Utilities::MPI::max(report.max_signal_speed, communicator);
+          state.travel_since_adaptation += maxima[1] * state.time_step;
+        points_left_cells = maxima[2] > 0;
       }
     report_failure(report.not_finite,
                    report.failure_location,
@@ -720,7 +720,11 @@ namespace sable::mpm
           write_particles();
       }
     if (parameters.print_timings)
-      timer.print_summary();
+      {
+        timer.print_summary();
+        pcout << "Particle sort in " << n_sorts << " of " << n_sorts + n_sorts_skipped
+              << " steps (the others: no point left its cell)" << std::endl;
+      }
     if (!parameters.output_directory.empty())
       pcout << "Output written to " << parameters.output_directory << "/ (statistics.csv"
             << (write_output ? ", " + particle_series.series_file() : "")
@@ -800,9 +804,21 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "sort particles");
     lost_particles = 0;
-    particle_handler->sort_particles_into_subdomains_and_cells();
-    if (contact && parallel)
-      particle_handler->exchange_ghost_particles(true);
+    if (points_left_cells)
+      {
+        particle_handler->sort_particles_into_subdomains_and_cells();
+        if (contact && parallel)
+          particle_handler->exchange_ghost_particles(true);
+      }
+    else
+      {
+        // no point on any rank left its cell: the sort would only set the
+        // reference locations, and the ghost particles keep their cells
+        particle_cells.update_reference_locations();
+        if (contact && parallel)
+          particle_handler->update_ghost_particles();
+      }
+    ++(points_left_cells ? n_sorts : n_sorts_skipped);
     const unsigned long long lost = Utilities::MPI::sum(lost_particles, communicator);
     if (lost > 0)
       {

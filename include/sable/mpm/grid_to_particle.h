@@ -33,6 +33,8 @@ namespace sable::mpm
     {
       double                max_signal_speed   = 0;
       double                max_particle_speed = 0;
+      /// points whose new position is outside their cell (this rank)
+      unsigned int          n_left_cell        = 0;
       bool                  not_finite         = false;
       bool                  too_far            = false;
       types::particle_index failed_id          = numbers::invalid_unsigned_int;

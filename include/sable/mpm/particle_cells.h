@@ -41,6 +41,18 @@ namespace sable::mpm
       const typename Grid<dim>::CellData *              data;
       ParticleRange                                     particles;
       bool                                              owned;
+      /// vertex 0, and per direction d the coordinate d of vertex 2^d
+      Point<dim> lower, upper;
+
+      /// Whether @p x is in the cell (faces included).
+      bool
+      contains(const Point<dim> &x) const
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (x[d] < lower[d] || x[d] > upper[d])
+            return false;
+        return true;
+      }
     };
 
     /// Collect the cells with points of @p particle_handler (owned, and
@@ -49,6 +61,15 @@ namespace sable::mpm
     rebuild(const Particles::ParticleHandler<dim> &particle_handler,
             const Grid<dim> &                      grid,
             const CellColouring<dim> &             colouring);
+
+    /**
+     * Set every locally owned point's reference location from its position
+     * in its cell, as the ParticleHandler's sort does (MappingCartesian:
+     * (x - v_0) / (v_{2^d} - v_0) per direction d, the same operations, so
+     * the same bits): instead of a sort when no point left its cell.
+     */
+    void
+    update_reference_locations() const;
 
     /// Locally owned cells with points: [0, n_owned()).
     unsigned int

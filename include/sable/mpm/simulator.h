@@ -328,6 +328,11 @@ namespace sable::mpm
     GridToParticle<dim>         grid_to_particle;
     /// the cells with material points, rebuilt at the start of each step
     ParticleCells<dim> particle_cells;
+    /// whether a point left its cell in this step's move (sort_particles()
+    /// sorts only then)
+    bool points_left_cells = true;
+    /// steps that sorted the particles, and that did not need to
+    unsigned int n_sorts = 0, n_sorts_skipped = 0;
     /// multi-body contact: only with a contact model and two or more bodies
     std::unique_ptr<MultiBodyContact<dim>> contact;
     /// only with refinement criteria
