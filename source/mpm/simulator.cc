@@ -121,6 +121,7 @@ namespace sable::mpm
   void
   Simulator<dim>::create_particle_handler()
   {
+    particle_cells_current = false;
     particle_handler = std::make_unique<Particles::ParticleHandler<dim>>(
       triangulation, grid.get_mapping(), layout.n_properties());
     particle_handler->signals.particle_lost.connect(
@@ -265,6 +266,7 @@ namespace sable::mpm
   void
   Simulator<dim>::setup_after_mesh_change()
   {
+    particle_cells_current = false;
     grid.setup();
     boundary_conditions.setup(grid);
     allocate_nodal_data();
@@ -330,8 +332,10 @@ namespace sable::mpm
   Simulator<dim>::advance()
   {
     state.time_step = compute_time_step();
-    // the container changed in the last sort, ghost exchange or mesh change
-    particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
+    // unless the particle container is as the last step left it
+    if (!particle_cells_current)
+      particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
+    particle_cells_current = false;
     scatter_momenta_and_forces();
     update_nodal_velocities();
     if (parameters.update_scheme == UpdateScheme::usl)
@@ -819,6 +823,9 @@ namespace sable::mpm
           particle_handler->update_ghost_particles();
       }
     ++(points_left_cells ? n_sorts : n_sorts_skipped);
+    // a skipped sort leaves the owned points' container as it was (the
+    // ghost update may not: rebuild then)
+    particle_cells_current = !points_left_cells && !(contact && parallel);
     const unsigned long long lost = Utilities::MPI::sum(lost_particles, communicator);
     if (lost > 0)
       {

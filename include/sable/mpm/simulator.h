@@ -326,8 +326,13 @@ namespace sable::mpm
     /// strain update, from the grid-to-particle pass to the stress update
     std::vector<Tensor<2, dim>> velocity_gradients;
     GridToParticle<dim>         grid_to_particle;
-    /// the cells with material points, rebuilt at the start of each step
+    /// the cells with material points, rebuilt at the start of a step
+    /// unless particle_cells_current
     ParticleCells<dim> particle_cells;
+    /// whether particle_cells still describes the particle container: only
+    /// after a step whose sort was skipped (no ghost particles), until the
+    /// next step or mesh change
+    bool particle_cells_current = false;
     /// whether a point left its cell in this step's move (sort_particles()
     /// sorts only then)
     bool points_left_cells = true;
