@@ -73,7 +73,9 @@ def run(sable, prm_path, directory, cells, end_time=None):
         text = variant(f.read(), cells, f"{name}_n{cells}", end_time)
     with open(scene, "w") as f:
         f.write(text)
-    result = subprocess.run([sable, os.path.basename(scene), "--overwrite"], cwd=directory,
+    # every step's row: the analysis samples the trajectory
+    result = subprocess.run([sable, os.path.basename(scene), "--overwrite",
+                             "--set", "Output/Statistics interval=1"], cwd=directory,
                             capture_output=True, text=True)
     output = result.stdout + result.stderr
     if result.returncode != 0:

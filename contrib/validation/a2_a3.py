@@ -75,7 +75,9 @@ def settings(cells, output_directory, end_time, output_interval):
     time and particle output interval of a scene file."""
     values = {"Grid/Subdivisions": ", ".join(str(c) for c in cells),
               "Output directory": output_directory,
-              "Output/Particle output interval": output_interval}
+              "Output/Particle output interval": output_interval,
+              # every step's row: the analysis samples the trajectory
+              "Output/Statistics interval": 1}
     if end_time is not None:
         values["Time/End time"] = end_time
     arguments = []

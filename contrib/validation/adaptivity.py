@@ -69,7 +69,9 @@ def run(sable, work, scene, label, subdivisions, criteria, interval):
         text = scene_text(f.read(), subdivisions, name, criteria, interval)
     with open(os.path.join(work, name + ".prm"), "w") as f:
         f.write(text)
-    result = subprocess.run([sable, name + ".prm", "--overwrite"], cwd=work, capture_output=True, text=True)
+    # every step's row, as the analysis expects
+    result = subprocess.run([sable, name + ".prm", "--overwrite", "--set", "Output/Statistics interval=1"],
+                            cwd=work, capture_output=True, text=True)
     if result.returncode != 0:
         sys.stderr.write(result.stdout + result.stderr)
         raise SystemExit(f"{name}: sable exited with {result.returncode}")

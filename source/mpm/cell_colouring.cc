@@ -57,6 +57,8 @@ namespace sable::mpm
             colour.cells.insert(colour.cells.end(),
                                 cells.begin() + first,
                                 cells.begin() + block_end(first));
+            for (unsigned int c = first; c < block_end(first); ++c)
+              colour.cell_indices.push_back(cells[c]->active_cell_index());
           }
         colour.block_start.push_back(colour.cells.size());
       }

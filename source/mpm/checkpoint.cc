@@ -48,12 +48,12 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 6: the scene's entries, compared on resume (5: the friction
-      /// heat of the walls; 4: the run
+      /// 7: whether the last step's statistics row is due; 6: the scene's
+      /// entries, compared on resume (5: the friction heat of the walls; 4: the run
       /// state as one RunState, the contact nodes as an output series;
       /// 3: the grid's base level and the grid output series; 1 and 2 have
       /// a coarse mesh of every subdivision cell)
-      static constexpr unsigned int current_format = 6;
+      static constexpr unsigned int current_format = 7;
       unsigned int          format         = current_format;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
@@ -113,17 +113,17 @@ namespace sable::mpm
     /**
      * Keep the rows of statistics.csv an uninterrupted run has up to
      * @p step: those before it, and the row of @p step itself if the
-     * statistics interval asks for it or the run ends there (a stopped run
-     * also writes its last step).
+     * statistics schedule asks for it (@p row_due) or the run ends there (a
+     * stopped run also writes its last step).
      */
     void
     truncate_statistics(const fs::path &   path,
                         const unsigned int step,
-                        const unsigned int interval,
+                        const bool         row_due,
                         const bool         ends_here)
     {
       keep_table_rows(path.string(), [&](const unsigned long row_step) {
-        return row_step < step || (row_step == step && (step % interval == 0 || ends_here));
+        return row_step < step || (row_step == step && (row_due || ends_here));
       });
     }
   } // namespace
@@ -364,7 +364,7 @@ namespace sable::mpm
           const fs::path file = fs::path(parameters.output_directory) / "statistics.csv";
           if (fs::exists(file))
             {
-              truncate_statistics(file, this->state.step_number, parameters.statistics_interval, finished());
+              truncate_statistics(file, this->state.step_number, this->state.statistics_row_due, finished());
               append = true;
             }
         });

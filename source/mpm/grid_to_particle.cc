@@ -27,6 +27,7 @@ namespace sable::mpm
   {
     max_signal_speed   = std::max(max_signal_speed, other.max_signal_speed);
     max_particle_speed = std::max(max_particle_speed, other.max_particle_speed);
+    n_left_cell += other.n_left_cell;
     if (other.not_finite || other.too_far)
       fail(other.too_far, other.failed_id, other.failure_location);
   }
@@ -35,7 +36,7 @@ namespace sable::mpm
   template <bool update_positions, bool update_strain_rates>
   typename GridToParticle<dim>::Report
   GridToParticle<dim>::transfer(Particles::ParticleHandler<dim> &particle_handler,
-                                const CellList &                 cells,
+                                const ParticleCells<dim> &       cells,
                                 const MultiBodyContact<dim> *    contact,
                                 const double                     time_step,
                                 const double                     alpha) const
@@ -50,14 +51,15 @@ namespace sable::mpm
     std::mutex report_mutex;
     parallel::apply_to_subranges(
       0u,
-      static_cast<unsigned int>(cells.size()),
+      cells.n_owned(),
       [&](const unsigned int begin, const unsigned int end) {
         Report                    local;
         typename Grid<dim>::Shape shape;
         for (unsigned int c = begin; c < end; ++c)
           {
-            const typename Grid<dim>::CellData &data = grid.cell_data(cells[c]);
-            for (auto &particle : particle_handler.particles_in_cell(cells[c]))
+            const auto &                        cell = cells[c];
+            const typename Grid<dim>::CellData &data = *cell.data;
+            for (auto &particle : cell.particles)
               {
                 const auto         props = particle.get_properties();
                 const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
@@ -106,6 +108,7 @@ namespace sable::mpm
                         local.fail(true, particle.get_id(), location);
                     location += displacement;
                     particle.set_location(location);
+                    local.n_left_cell += !cell.contains(location);
                     local.max_signal_speed =
                       std::max(local.max_signal_speed, std::sqrt(speed2) + body_wave_speed[body]);
                     local.max_particle_speed =
@@ -129,7 +132,7 @@ namespace sable::mpm
 #define SABLE_INSTANTIATE(dim, positions, strain_rates)                                   \
   template GridToParticle<dim>::Report                                                    \
   GridToParticle<dim>::transfer<positions, strain_rates>(Particles::ParticleHandler<dim> &, \
-                                                         const CellList &,                \
+                                                         const ParticleCells<dim> &,      \
                                                          const MultiBodyContact<dim> *,   \
                                                          const double,                    \
                                                          const double) const;

@@ -181,9 +181,14 @@ namespace sable::mpm
                       "fields: material_points (number in the cell), level "
                       "(refinement level) and rank (owning MPI rank).");
     prm.declare_entry("Statistics interval",
-                      "1",
-                      Patterns::Integer(1),
-                      "Steps between rows of statistics.csv.");
+                      "0",
+                      Patterns::Integer(0),
+                      "Steps between rows of statistics.csv. 0: a row at "
+                      "the steps that write particle output ('Particle output "
+                      "interval') or a progress line ('Progress interval'), "
+                      "and at the last step. The energy guards ('Energy growth "
+                      "limit', 'Energy drift limit') are evaluated with the "
+                      "statistics: on these steps only.");
     prm.declare_entry("Progress interval",
                       "100",
                       Patterns::Integer(1),
@@ -246,7 +251,6 @@ namespace sable::mpm
                 "Output/Energy growth limit", p.energy_growth_limit, "a number > 1");
     check_input(p.energy_drift_limit > 0,
                 "Output/Energy drift limit", p.energy_drift_limit, "a number > 0");
-    check_input(p.statistics_interval >= 1, "Output/Statistics interval", p.statistics_interval, "an integer >= 1");
     check_input(p.progress_interval >= 1, "Output/Progress interval", p.progress_interval, "an integer >= 1");
     check_input(!p.bodies.empty(), "Number of bodies", 0, "at least one body");
 #ifndef DEAL_II_WITH_HDF5

@@ -8,10 +8,10 @@ namespace sable::mpm
   template <int dim>
   template <GridPass pass>
   void
-  ParticleToGrid<dim>::scatter(const Particles::ParticleHandler<dim> &particle_handler,
-                               const Grid<dim> &                      grid,
-                               NodalFields<dim> &                     fields,
-                               MultiBodyContact<dim> *                contact) const
+  ParticleToGrid<dim>::scatter(const ParticleCells<dim> &cells,
+                               const Grid<dim> &         grid,
+                               NodalFields<dim> &        fields,
+                               MultiBodyContact<dim> *   contact) const
   {
     using Layout                           = ParticleLayout<dim>;
     constexpr bool         momentum_update = pass == GridPass::momentum_update;
@@ -59,34 +59,29 @@ namespace sable::mpm
     };
 
     // the cell worker
-    const auto scatter_cell = [&](const typename Triangulation<dim>::active_cell_iterator &cell,
-                                  typename Grid<dim>::Shape &                             shape) {
-      const auto particles = particle_handler.particles_in_cell(cell);
-      if (particles.begin() == particles.end())
+    const auto scatter_cell = [&](const typename ParticleCells<dim>::Cell &cell,
+                                  typename Grid<dim>::Shape &              shape) {
+      const bool near_contact = contact != nullptr && contact->touches(grid.cell_nodes(*cell.data));
+      if (!cell.owned && !near_contact)
         return;
-      const typename Grid<dim>::CellData &data = grid.cell_data(cell);
-      const bool near_contact = contact != nullptr && contact->touches(grid.cell_nodes(data));
-      const bool owned        = cell->is_locally_owned();
-      if (!owned && !near_contact)
-        return;
-      for (const auto &particle : particles)
+      for (const auto &particle : cell.particles)
         {
           const ArrayView<const double> props = particle.get_properties();
-          grid.evaluate(data, particle.get_reference_location(), shape);
+          grid.evaluate(*cell.data, particle.get_reference_location(), shape);
           const Tensor<2, dim>          volume_stress =
             momentum_update ? Layout::volume_stress(props) : Tensor<2, dim>();
           if (near_contact)
             contact->template scatter<pass>(props, particle.get_location(), shape, volume_stress);
-          if (owned)
+          if (cell.owned)
             add_to_single_field(particle, props, shape, volume_stress);
         }
     };
 
-    colouring.for_each_cell_range([&](const auto begin, const auto end) {
+    cells.for_each_coloured_range([&](const unsigned int *begin, const unsigned int *end) {
       // the worker's scratch: the shape functions at one point
       typename Grid<dim>::Shape shape;
-      for (auto cell = begin; cell != end; ++cell)
-        scatter_cell(*cell, shape);
+      for (const unsigned int *c = begin; c != end; ++c)
+        scatter_cell(cells[*c], shape);
     });
     fields.template compress<pass>();
   }
@@ -94,7 +89,7 @@ namespace sable::mpm
   template class ParticleToGrid<2>;
   template class ParticleToGrid<3>;
 #define SABLE_INSTANTIATE(dim, pass)                                                    \
-  template void ParticleToGrid<dim>::scatter<pass>(const Particles::ParticleHandler<dim> &, \
+  template void ParticleToGrid<dim>::scatter<pass>(const ParticleCells<dim> &,              \
                                                    const Grid<dim> &,                   \
                                                    NodalFields<dim> &,                  \
                                                    MultiBodyContact<dim> *) const;

@@ -123,6 +123,7 @@ namespace sable::mpm
   void
   Simulator<dim>::create_particle_handler()
   {
+    particle_cells_current = false;
     particle_handler = std::make_unique<Particles::ParticleHandler<dim>>(
       triangulation, grid.get_mapping(), layout.n_properties());
     particle_handler->signals.particle_lost.connect(
@@ -268,6 +269,7 @@ namespace sable::mpm
   void
   Simulator<dim>::setup_after_mesh_change()
   {
+    particle_cells_current = false;
     grid.setup();
     boundary_conditions.setup(grid);
     allocate_nodal_data();
@@ -332,8 +334,11 @@ namespace sable::mpm
   void
   Simulator<dim>::advance()
   {
-    state.time_step      = compute_time_step();
-    cells_with_particles = collect_cells_with_particles();
+    state.time_step = compute_time_step();
+    // unless the particle container is as the last step left it
+    if (!particle_cells_current)
+      particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
+    particle_cells_current = false;
     scatter_momenta_and_forces();
     update_nodal_velocities();
     if (parameters.update_scheme == UpdateScheme::usl)
@@ -363,17 +368,6 @@ namespace sable::mpm
   }
 
   template <int dim>
-  typename Simulator<dim>::CellList
-  Simulator<dim>::collect_cells_with_particles() const
-  {
-    CellList cells;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && particle_handler->n_particles_in_cell(cell) > 0)
-        cells.push_back(cell);
-    return cells;
-  }
-
-  template <int dim>
   void
   Simulator<dim>::scatter_momenta_and_forces()
   {
@@ -386,7 +380,7 @@ namespace sable::mpm
                                     grid,
                                     layout);
       }
-    particle_to_grid.template scatter<GridPass::momentum_update>(*particle_handler,
+    particle_to_grid.template scatter<GridPass::momentum_update>(particle_cells,
                                                                  grid,
                                                                  nodal_fields,
                                                                  contact.get());
@@ -423,7 +417,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "grid to particles");
     process_report(grid_to_particle.update_particles_and_strain_rates(*particle_handler,
-                                                                      cells_with_particles,
+                                                                      particle_cells,
                                                                       contact.get(),
                                                                       state.time_step,
                                                                       parameters.pic_fraction),
@@ -436,7 +430,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "grid to particles");
     process_report(grid_to_particle.update_velocities_and_positions(*particle_handler,
-                                                                    cells_with_particles,
+                                                                    particle_cells,
                                                                     contact.get(),
                                                                     state.time_step,
                                                                     parameters.pic_fraction),
@@ -454,7 +448,7 @@ namespace sable::mpm
           particle_handler->update_ghost_particles();
         contact->begin_remap();
       }
-    particle_to_grid.template scatter<GridPass::remapped_momenta>(*particle_handler,
+    particle_to_grid.template scatter<GridPass::remapped_momenta>(particle_cells,
                                                                   grid,
                                                                   nodal_fields,
                                                                   contact.get());
@@ -486,7 +480,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "grid to particles");
     process_report(
-      grid_to_particle.compute_strain_rates(*particle_handler, cells_with_particles, contact.get()),
+      grid_to_particle.compute_strain_rates(*particle_handler, particle_cells, contact.get()),
       false);
   }
 
@@ -496,8 +490,7 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "stress update");
     const StressUpdate<dim> stress_update(materials, layout);
-    const auto              failure = stress_update.update(*particle_handler,
-                                                           cells_with_particles,
+    const auto              failure = stress_update.update(particle_cells,
                                                            velocity_gradients,
                                                            state.time_step);
     report_failure(failure.failed,
@@ -514,16 +507,16 @@ namespace sable::mpm
     // takes part in the reductions, also one without points)
     if (moved)
       {
+        // with the fastest point's travel since the last adaptation, and
+        // whether any point left its cell (then the sort is due)
+        std::vector<double> maxima = {report.max_signal_speed,
+                                      report.max_particle_speed,
+                                      report.n_left_cell > 0 ? 1. : 0.};
+        Utilities::MPI::max(maxima, communicator, maxima);
+        state.max_signal_speed = maxima[0];
         if (mesh_refinement)
-          {
-            // the fastest point's travel since the last adaptation
-            std::vector<double> speeds = {report.max_signal_speed, report.max_particle_speed};
-            Utilities::MPI::max(speeds, communicator, speeds);
-            state.max_signal_speed = speeds[0];
-            state.travel_since_adaptation += speeds[1] * state.time_step;
-          }
-        else
-          state.max_signal_speed = Utilities::MPI::max(report.max_signal_speed, communicator);
+          state.travel_since_adaptation += maxima[1] * state.time_step;
+        points_left_cells = maxima[2] > 0;
       }
     report_failure(report.not_finite,
                    report.failure_location,
@@ -708,14 +701,16 @@ namespace sable::mpm
     while (!finished())
       {
         step();
-        const bool last = finished();
-        const bool progress = state.step_number % parameters.progress_interval == 0 || last;
-        if (state.step_number % parameters.statistics_interval == 0 || progress)
+        const bool last       = finished();
+        const bool progress   = state.step_number % parameters.progress_interval == 0 || last;
+        const bool output_due = write_output && state.time >= state.next_output_time * (1 - 1e-12);
+        state.statistics_row_due = statistics_due(output_due);
+        if (state.statistics_row_due || progress)
           {
             TimerOutput::Scope    scope(timer, "statistics");
             const Statistics<dim> s = compute_statistics();
             check_energy(s);
-            if (state.step_number % parameters.statistics_interval == 0 || last)
+            if (state.statistics_row_due || last)
               statistics_file->write_row(
                 state.step_number, state.time, state.time_step, state.boundary_work, s);
             if (progress)
@@ -734,7 +729,6 @@ namespace sable::mpm
                       << std::defaultfloat << std::setprecision(6) << std::endl;
               }
           }
-        const bool output_due = write_output && state.time >= state.next_output_time * (1 - 1e-12);
         if (output_due)
           write_particles();
         // the checkpoint holds the state an uninterrupted run has at this
@@ -745,7 +739,11 @@ namespace sable::mpm
           write_particles();
       }
     if (parameters.print_timings)
-      timer.print_summary();
+      {
+        timer.print_summary();
+        pcout << "Particle sort in " << n_sorts << " of " << n_sorts + n_sorts_skipped
+              << " steps (the others: no point left its cell)" << std::endl;
+      }
     if (!parameters.output_directory.empty())
       pcout << "Output written to " << parameters.output_directory << "/ (statistics.csv"
             << (write_output ? ", " + particle_series.series_file() : "")
@@ -753,6 +751,15 @@ namespace sable::mpm
             << (write_checkpoints ? ", checkpoint/" : "") << ")" << std::endl;
     pcout << "Finished " << state.step_number << " steps to t = " << state.time << " in "
           << wall.wall_time() << " s wall time" << std::endl;
+  }
+
+  template <int dim>
+  bool
+  Simulator<dim>::statistics_due(const bool output_due) const
+  {
+    const unsigned int interval = parameters.statistics_interval;
+    return interval > 0 ? state.step_number % interval == 0 :
+                          output_due || state.step_number % parameters.progress_interval == 0;
   }
 
   template <int dim>
@@ -816,9 +823,24 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "sort particles");
     lost_particles = 0;
-    particle_handler->sort_particles_into_subdomains_and_cells();
-    if (contact && parallel)
-      particle_handler->exchange_ghost_particles(true);
+    if (points_left_cells)
+      {
+        particle_handler->sort_particles_into_subdomains_and_cells();
+        if (contact && parallel)
+          particle_handler->exchange_ghost_particles(true);
+      }
+    else
+      {
+        // no point on any rank left its cell: the sort would only set the
+        // reference locations, and the ghost particles keep their cells
+        particle_cells.update_reference_locations();
+        if (contact && parallel)
+          particle_handler->update_ghost_particles();
+      }
+    ++(points_left_cells ? n_sorts : n_sorts_skipped);
+    // a skipped sort leaves the owned points' container as it was (the
+    // ghost update may not: rebuild then)
+    particle_cells_current = !points_left_cells && !(contact && parallel);
     const unsigned long long lost = Utilities::MPI::sum(lost_particles, communicator);
     if (lost > 0)
       {

@@ -9,8 +9,7 @@ namespace sable::mpm
 {
   template <int dim>
   typename StressUpdate<dim>::Failure
-  StressUpdate<dim>::update(Particles::ParticleHandler<dim> &  particle_handler,
-                            const CellList &                   cells,
+  StressUpdate<dim>::update(const ParticleCells<dim> &         cells,
                             const std::vector<Tensor<2, dim>> &velocity_gradients,
                             const double                       time_step) const
   {
@@ -19,7 +18,7 @@ namespace sable::mpm
     std::mutex failure_mutex;
     parallel::apply_to_subranges(
       0u,
-      static_cast<unsigned int>(cells.size()),
+      cells.n_owned(),
       [&](const unsigned int begin, const unsigned int end) {
         Tensor<2, dim> identity;
         for (unsigned int d = 0; d < dim; ++d)
@@ -60,7 +59,7 @@ namespace sable::mpm
 
         for (unsigned int c = begin; c < end; ++c)
           {
-            const auto   particles = particle_handler.particles_in_cell(cells[c]);
+            const auto & particles = cells[c].particles;
             unsigned int body      = numbers::invalid_unsigned_int;
             // sized for the cell before pointers into it are taken
             stresses.resize(std::distance(particles.begin(), particles.end()));

@@ -19,7 +19,10 @@ checkpoint carries the refined mesh) to 1e-11.
 Usage: checkpoint_restart.py [ranks] (default 1). With 2 ranks it also
 resumes the 2-rank checkpoint on 1 rank (the mesh is repartitioned) and
 compares with the 1-rank run to the 1e-10 of test mpi_consistency, and
-checks that a resume on 2 ranks balances the material points again."""
+checks that a resume on 2 ranks balances the material points again. On one
+rank also with the default statistics schedule (rows with the particle
+output): the row of a stop step is kept exactly when the uninterrupted run
+has it."""
 import os
 import re
 import shutil
@@ -210,4 +213,19 @@ check("... the message names the output directory",
       "no complete checkpoint" in output and "'output'" in output,
       message(output))
 check("... and nothing was written", not os.path.exists(os.path.join(WORK, f"no_checkpoint_{tag}", "output")))
+
+if n_ranks == 1:
+    # the default schedule (Statistics interval 0: rows with the particle
+    # output): a run stopped at a step without output writes that step's
+    # row, its resume drops it; stopped at an output step, the row stays
+    default = {"Output/Statistics interval": 0}
+    _, _, full = run("full_default", dict(scene(120), **default), bodies)
+    output_steps = [int(r["step"]) for r in full]
+    for stop in (next(s for s in range(50, 100) if s not in output_steps),
+                 next(s for s in output_steps if s >= 50)):
+        what = f"default statistics, stopped at step {stop} ({'with' if stop in output_steps else 'without'} output)"
+        _, _, rows = run("restart_default", dict(scene(stop, 1000), **default), bodies)
+        check(f"{what}: the stopped run wrote its last row", int(rows[-1]["step"]) == stop)
+        _, _, rows = run("restart_default", dict(scene(120, 1000), **default), bodies, args=["--resume"], fresh=False)
+        compare(what, rows, full, 1e-12)
 finish()

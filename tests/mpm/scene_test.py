@@ -19,7 +19,12 @@ failures = []
 def prm_text(entries, bodies):
     """Build a parameter file: `entries` maps 'Subsection/Entry' (or 'Entry')
     to a value; `bodies` is a list of dicts of body entries ('Entry', or
-    'Subsection/Entry' for a material model's own entries)."""
+    'Subsection/Entry' for a material model's own entries). MPM scenes get
+    'Output/Statistics interval = 1' unless they set it: the checks read the
+    statistics of every step (the program's default writes them only with
+    particle output and progress lines)."""
+    if entries.get("Model", "mpm") == "mpm" and "Output/Statistics interval" not in entries:
+        entries = dict(entries, **{"Output/Statistics interval": 1})
     top = []
     sections = {}
     for key, value in entries.items():

@@ -29,8 +29,9 @@ namespace sable::mpm
    * cells keeps the serial loop's memory locality (single-cell colours
    * stride through the particle and node data, one pass per colour).
    *
-   * Built once per mesh change; each step's loop skips the cells without
-   * particles, so nothing is rebuilt when particles change cells.
+   * Built once per mesh change; nothing is rebuilt when particles change
+   * cells (ParticleCells keeps, per colour and block, the cells that hold
+   * points).
    */
   template <int dim>
   class CellColouring
@@ -72,14 +73,23 @@ namespace sable::mpm
       return colours.size();
     }
 
-  private:
     struct Colour
     {
       /// the cells of the colour's blocks, block after block
       std::vector<CellIterator> cells;
+      /// their active cell indices
+      std::vector<unsigned int> cell_indices;
       /// where each block starts in cells, and cells.size() at the end
       std::vector<unsigned int> block_start;
     };
+
+    const std::vector<Colour> &
+    get_colours() const
+    {
+      return colours;
+    }
+
+  private:
     std::vector<Colour> colours;
   };
 } // namespace sable::mpm

@@ -6,6 +6,7 @@
 #include <sable/mpm/contact/multi_body_contact.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/nodal_fields.h>
+#include <sable/mpm/particle_cells.h>
 #include <sable/mpm/particle_layout.h>
 
 #include <vector>
@@ -14,7 +15,7 @@ namespace sable::mpm
 {
   /**
    * The grid-to-particle transfer (SPEC Part A steps 9-10) as a threaded
-   * loop over the cells with material points: each point reads the nodal
+   * loop over the locally owned cells with material points (ParticleCells): each point reads the nodal
    * velocities of its body (its body's record at a contact node, the single
    * field elsewhere) and updates its velocity (FLIP with a PIC fraction)
    * and position, or stores its velocity gradient L = sum v_i grad N_i for
@@ -25,8 +26,6 @@ namespace sable::mpm
   class GridToParticle
   {
   public:
-    using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
-
     /// What a pass found: the largest signal and point speeds (this rank),
     /// and the lowest-id point that failed (not finite, or moved more than
     /// a cell).
@@ -34,6 +33,8 @@ namespace sable::mpm
     {
       double                max_signal_speed   = 0;
       double                max_particle_speed = 0;
+      /// points whose new position is outside their cell (this rank)
+      unsigned int          n_left_cell        = 0;
       bool                  not_finite         = false;
       bool                  too_far            = false;
       types::particle_index failed_id          = numbers::invalid_unsigned_int;
@@ -59,7 +60,7 @@ namespace sable::mpm
     /// alpha sum N v_new and positions x += dt sum N v_new.
     Report
     update_velocities_and_positions(Particles::ParticleHandler<dim> &particle_handler,
-                                    const CellList &                 cells,
+                                    const ParticleCells<dim> &       cells,
                                     const MultiBodyContact<dim> *    contact,
                                     const double                     time_step,
                                     const double                     pic_fraction) const
@@ -70,7 +71,7 @@ namespace sable::mpm
     /// The velocity gradients of the strain update (by local index).
     Report
     compute_strain_rates(Particles::ParticleHandler<dim> &particle_handler,
-                         const CellList &                 cells,
+                         const ParticleCells<dim> &       cells,
                          const MultiBodyContact<dim> *    contact) const
     {
       return transfer<false, true>(particle_handler, cells, contact, 0., 0.);
@@ -79,7 +80,7 @@ namespace sable::mpm
     /// Both in one pass, from the same nodal velocities (USL).
     Report
     update_particles_and_strain_rates(Particles::ParticleHandler<dim> &particle_handler,
-                                      const CellList &                 cells,
+                                      const ParticleCells<dim> &       cells,
                                       const MultiBodyContact<dim> *    contact,
                                       const double                     time_step,
                                       const double                     pic_fraction) const
@@ -91,7 +92,7 @@ namespace sable::mpm
     template <bool update_positions, bool update_strain_rates>
     Report
     transfer(Particles::ParticleHandler<dim> &particle_handler,
-             const CellList &                 cells,
+             const ParticleCells<dim> &       cells,
              const MultiBodyContact<dim> *    contact,
              const double                     time_step,
              const double                     pic_fraction) const;

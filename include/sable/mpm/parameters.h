@@ -83,7 +83,9 @@ namespace sable::mpm
     /// with the particle output, also the background grid with nodal mass
     /// and velocity and per-cell fields (GridOutput), in output_format
     bool         grid_output         = false;
-    unsigned int statistics_interval = 1;  ///< steps between CSV rows
+    /// steps between CSV rows; 0 = with every particle output and
+    /// progress line (Simulator::statistics_due())
+    unsigned int statistics_interval = 0;
     unsigned int progress_interval   = 100;
     bool         print_timings       = true;
     /// Steps between checkpoints (and one at the end of the run);

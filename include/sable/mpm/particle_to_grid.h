@@ -8,13 +8,14 @@
 #include <sable/mpm/grid.h>
 #include <sable/mpm/grid_pass.h>
 #include <sable/mpm/nodal_fields.h>
+#include <sable/mpm/particle_cells.h>
 #include <sable/mpm/particle_layout.h>
 
 namespace sable::mpm
 {
   /**
-   * The particle-to-grid transfer (SPEC Part A step 1) as a cell loop:
-   * for each cell with material points, evaluate the shape functions at
+   * The particle-to-grid transfer (SPEC Part A step 1) as a loop over the
+   * cells with material points (ParticleCells): for each of them, evaluate the shape functions at
    * every point once, then let the assemblers add the points' shares into
    * nodal storage: the single field (mass, momentum, internal force
    * -V sigma grad N, and the material extent friction walls read) and, in
@@ -44,10 +45,10 @@ namespace sable::mpm
     /// mass gradients, stresses and the material extent.
     template <GridPass pass>
     void
-    scatter(const Particles::ParticleHandler<dim> &particle_handler,
-            const Grid<dim> &                      grid,
-            NodalFields<dim> &                     fields,
-            MultiBodyContact<dim> *                contact) const;
+    scatter(const ParticleCells<dim> &cells,
+            const Grid<dim> &         grid,
+            NodalFields<dim> &        fields,
+            MultiBodyContact<dim> *   contact) const;
 
     const CellColouring<dim> &
     get_colouring() const

@@ -36,6 +36,9 @@ namespace sable::mpm
 
     double       next_output_time = 0;
     unsigned int output_counter   = 0;
+    /// whether an uninterrupted run writes a row of statistics.csv at
+    /// step_number (a stopped run also writes its last step)
+    bool statistics_row_due = false;
 
     unsigned int adaptations_without_change = 0;
     /// how far the fastest point travelled since the last adaptation
@@ -72,7 +75,7 @@ namespace sable::mpm
       ar &time &time_step &step_number &max_signal_speed;
       ar &boundary_work &initial_energy &initial_gravity_energy &energy_floor &
         largest_gravity_release &resolved_energy;
-      ar &next_output_time &output_counter;
+      ar &next_output_time &output_counter &statistics_row_due;
       ar &adaptations_without_change &travel_since_adaptation;
     }
   };

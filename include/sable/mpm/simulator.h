@@ -15,6 +15,7 @@
 #include <sable/mpm/materials/material.h>
 #include <sable/mpm/mesh_refinement.h>
 #include <sable/mpm/nodal_fields.h>
+#include <sable/mpm/particle_cells.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
 #include <sable/mpm/particle_to_grid.h>
@@ -193,8 +194,6 @@ namespace sable::mpm
     static constexpr unsigned int particle_cost = LoadBalance<dim>::particle_cost;
 
   private:
-    using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
-
     /// The phases of one step, in order (step() after initialize()).
     void
     advance();
@@ -208,9 +207,6 @@ namespace sable::mpm
     // --- the phases of step(), in order ---
     double
     compute_time_step() const;
-    /// The locally owned cells holding material points.
-    CellList
-    collect_cells_with_particles() const;
     /// Find the contact nodes, then scatter mass, momentum and internal
     /// forces to the single field and the bodies' fields.
     void
@@ -263,6 +259,10 @@ namespace sable::mpm
     /// Whether the end time or the step limit is reached.
     bool
     finished() const;
+    /// Whether 'Output/Statistics interval' asks for a row at this step
+    /// (interval 0: with particle output, @p output_due, and progress lines).
+    bool
+    statistics_due(const bool output_due) const;
     /// Size the nodal fields and colour the cells for the current grid.
     void
     allocate_nodal_data();
@@ -326,8 +326,18 @@ namespace sable::mpm
     /// strain update, from the grid-to-particle pass to the stress update
     std::vector<Tensor<2, dim>> velocity_gradients;
     GridToParticle<dim>         grid_to_particle;
-    /// the locally owned cells with material points, collected per step
-    CellList cells_with_particles;
+    /// the cells with material points, rebuilt at the start of a step
+    /// unless particle_cells_current
+    ParticleCells<dim> particle_cells;
+    /// whether particle_cells still describes the particle container: only
+    /// after a step whose sort was skipped (no ghost particles), until the
+    /// next step or mesh change
+    bool particle_cells_current = false;
+    /// whether a point left its cell in this step's move (sort_particles()
+    /// sorts only then)
+    bool points_left_cells = true;
+    /// steps that sorted the particles, and that did not need to
+    unsigned int n_sorts = 0, n_sorts_skipped = 0;
     /// multi-body contact: only with a contact model and two or more bodies
     std::unique_ptr<MultiBodyContact<dim>> contact;
     /// only with refinement criteria

@@ -4,6 +4,7 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <sable/mpm/materials/material.h>
+#include <sable/mpm/particle_cells.h>
 #include <sable/mpm/particle_layout.h>
 
 #include <memory>
@@ -14,7 +15,8 @@ namespace sable::mpm
   /**
    * The strain and stress update (SPEC Part A step 11): F <- (I + dt L) F
    * and the material's stress update, from the velocity gradients the
-   * grid-to-particle pass stored. Threaded over the cells with points;
+   * grid-to-particle pass stored. Threaded over the locally owned cells
+   * with points (ParticleCells);
    * within a cell the points of one body go to their material as one batch
    * (Material::update_stresses()). Each point depends only on its own
    * data, so threads change nothing.
@@ -23,8 +25,6 @@ namespace sable::mpm
   class StressUpdate
   {
   public:
-    using CellList = std::vector<typename Triangulation<dim>::active_cell_iterator>;
-
     /// Where a point's stress stopped being finite (lowest id).
     struct Failure
     {
@@ -40,8 +40,7 @@ namespace sable::mpm
     {}
 
     Failure
-    update(Particles::ParticleHandler<dim> &  particle_handler,
-           const CellList &                   cells,
+    update(const ParticleCells<dim> &         cells,
            const std::vector<Tensor<2, dim>> &velocity_gradients,
            const double                       time_step) const;
 

@@ -34,14 +34,26 @@ namespace sable::mpm
                                    const SymmetricTensor<2, 3> &stress) const
   {
     const double K = parameters.bulk_modulus, G = parameters.shear_modulus;
-    const SymmetricTensor<2, 3> D = symmetrize(L);
-    const Tensor<2, 3>          W = 0.5 * (L - transpose(L));
-    const Tensor<2, 3>          s(stress);
-    // W sigma - sigma W is symmetric for symmetric sigma and skew W
-    const SymmetricTensor<2, 3> rotation = symmetrize(W * s - s * W);
-    return stress + dt * (rotation + (K - 2. / 3. * G) * trace(D) *
-                                       unit_symmetric_tensor<3>() +
-                          2. * G * D);
+    const double lambda_trace = (K - 2. / 3. * G) * trace(L);
+    // by components (per point, the step's largest single cost): with
+    // W = (L - L^T) / 2 and A = W sigma, the rotation W sigma - sigma W is
+    // A + A^T for symmetric sigma and skew W
+    double s[3][3], W[3][3], A[3][3];
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        {
+          s[i][j] = stress[i][j];
+          W[i][j] = 0.5 * (L[i][j] - L[j][i]);
+        }
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        A[i][j] = W[i][0] * s[0][j] + W[i][1] * s[1][j] + W[i][2] * s[2][j];
+    SymmetricTensor<2, 3> result;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = i; j < 3; ++j)
+        result[i][j] = s[i][j] + dt * (A[i][j] + A[j][i] + G * (L[i][j] + L[j][i]) +
+                                       (i == j ? lambda_trace : 0.));
+    return result;
   }
 
   namespace

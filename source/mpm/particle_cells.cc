@@ -1,0 +1,85 @@
+#include <sable/mpm/particle_cells.h>
+
+namespace sable::mpm
+{
+  template <int dim>
+  void
+  ParticleCells<dim>::rebuild(const Particles::ParticleHandler<dim> &particle_handler,
+                              const Grid<dim> &                      grid,
+                              const CellColouring<dim> &             colouring)
+  {
+    // forget the previous cells (only their slots, not every cell's; after
+    // a mesh change their iterators may be gone, their indices are kept)
+    slot.resize(grid.triangulation.n_active_cells(), numbers::invalid_unsigned_int);
+    for (const Cell &c : cells)
+      if (c.active_cell_index < slot.size())
+        slot[c.active_cell_index] = numbers::invalid_unsigned_int;
+    cells.clear();
+
+    // one jump per non-empty cell: a cell's range ends where the next
+    // non-empty cell's particles begin
+    const auto collect = [&](auto particle, const auto end, const bool owned) {
+      while (particle != end)
+        {
+          const auto cell  = particle->get_surrounding_cell();
+          const auto         range = particle_handler.particles_in_cell(cell);
+          const unsigned int index = cell->active_cell_index();
+          slot[index]              = cells.size();
+          Point<dim>         lower = cell->vertex(0), upper;
+          for (unsigned int d = 0; d < dim; ++d)
+            upper[d] = cell->vertex(1u << d)[d];
+          cells.push_back({cell, index, &grid.cell_data(cell), range, owned, lower, upper});
+          particle = range.end();
+        }
+    };
+    collect(particle_handler.begin(), particle_handler.end(), true);
+    n_owned_cells = cells.size();
+    collect(particle_handler.begin_ghost(), particle_handler.end_ghost(), false);
+
+    // the colouring's blocks, with their empty cells and empty blocks left out
+    colours.resize(colouring.get_colours().size());
+    for (unsigned int k = 0; k < colours.size(); ++k)
+      {
+        const auto &all    = colouring.get_colours()[k];
+        Colour &    colour = colours[k];
+        colour.cells.clear();
+        colour.block_start.assign(1, 0);
+        for (unsigned int b = 0; b + 1 < all.block_start.size(); ++b)
+          {
+            for (unsigned int c = all.block_start[b]; c < all.block_start[b + 1]; ++c)
+              if (const unsigned int s = slot[all.cell_indices[c]];
+                  s != numbers::invalid_unsigned_int)
+                colour.cells.push_back(s);
+            if (colour.cells.size() > colour.block_start.back())
+              colour.block_start.push_back(colour.cells.size());
+          }
+      }
+  }
+
+  template <int dim>
+  void
+  ParticleCells<dim>::update_reference_locations() const
+  {
+    parallel::apply_to_subranges(
+      0u,
+      n_owned_cells,
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int c = begin; c < end; ++c)
+          {
+            const Cell &cell = cells[c];
+            for (auto &particle : cell.particles)
+              {
+                Point<dim> reference = particle.get_location();
+                reference -= cell.lower;
+                for (unsigned int d = 0; d < dim; ++d)
+                  reference[d] /= cell.upper[d] - cell.lower[d];
+                particle.set_reference_location(reference);
+              }
+          }
+      },
+      16);
+  }
+
+  template class ParticleCells<2>;
+  template class ParticleCells<3>;
+} // namespace sable::mpm
