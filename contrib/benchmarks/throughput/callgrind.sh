@@ -60,6 +60,7 @@ scene floor "2, 2" "256, 256" "1, 1" "0, -9.81" "2: fixed" "Density = 1000" > "$
 for name in box floor; do
   for interval in 1 0; do
     sed -i "s/Statistics interval = .*/Statistics interval = $interval/" "$work/$name.prm"
+    rm -rf "$work/out_$name" # sable refuses to write over an earlier run's results
     DEAL_II_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$work/$name.out" \
       "$build/sable" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
       { echo "$name, statistics interval $interval: $(grep -m1 'sable:' "$work/$name.log")"; continue; }
