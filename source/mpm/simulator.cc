@@ -375,10 +375,7 @@ namespace sable::mpm
     if (contact)
       {
         TimerOutput::Scope scope(timer, "find contact nodes (in particles to grid)");
-        contact->mark_contact_nodes(particle_to_grid.get_colouring(),
-                                    *particle_handler,
-                                    grid,
-                                    layout);
+        contact->mark_contact_nodes(particle_cells, grid, layout);
       }
     particle_to_grid.template scatter<GridPass::momentum_update>(particle_cells,
                                                                  grid,

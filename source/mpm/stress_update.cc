@@ -14,8 +14,11 @@ namespace sable::mpm
                             const double                       time_step) const
   {
     using Layout = ParticleLayout<dim>;
-    Failure    failure;
-    std::mutex failure_mutex;
+    // the stress components a material writes: in plane strain xx yy zz xy
+    // (xz and yz stay zero), in 3D all six
+    constexpr unsigned int n_written = dim == 2 ? 4 : 6;
+    Failure                failure;
+    std::mutex             failure_mutex;
     parallel::apply_to_subranges(
       0u,
       cells.n_owned(),
@@ -23,70 +26,59 @@ namespace sable::mpm
         Tensor<2, dim> identity;
         for (unsigned int d = 0; d < dim; ++d)
           identity[d][d] = 1.;
-        MaterialPointBatch                                 batch;
-        std::vector<SymmetricTensor<2, 3>>                 stresses;
-        std::vector<typename Particles::ParticleIterator<dim>> points;
-        Failure                                            local;
+        MaterialPointBatch<dim> batch;
+        Failure                 local;
 
-        // the batch's stresses back into the points' properties, with one
-        // finiteness check per batch
-        const auto finish_batch = [&](const unsigned int body) {
+        // the material update of the points from @p first on (consecutive
+        // in their cell), then one finiteness test for the batch: x - x is
+        // 0 for a finite x, NaN for NaN and infinity
+        const auto finish_batch = [&](const unsigned int body, auto first) {
           if (batch.size() == 0)
             return;
           materials[body]->update_stresses(batch, time_step);
-          bool finite = true;
+          double residue = 0.;
           for (unsigned int p = 0; p < batch.size(); ++p)
-            {
-              const auto props = points[p]->get_properties();
-              for (unsigned int c = 0; c < 6; ++c)
-                {
-                  props[Layout::stress + c] = stresses[p].access_raw_entry(c);
-                  finite = finite && std::isfinite(stresses[p].access_raw_entry(c));
-                }
-            }
-          if (!finite)
-            for (unsigned int p = 0; p < batch.size(); ++p)
+            for (unsigned int c = 0; c < n_written; ++c)
+              residue += batch.stress[p][c] - batch.stress[p][c];
+          if (!std::isfinite(residue))
+            for (unsigned int p = 0; p < batch.size(); ++p, ++first)
               {
-                bool point_finite = true;
-                for (unsigned int c = 0; c < 6; ++c)
-                  point_finite = point_finite && std::isfinite(stresses[p].access_raw_entry(c));
-                if (!point_finite && (!local.failed || points[p]->get_id() < local.id))
-                  local = {true, points[p]->get_id(), points[p]->get_location()};
+                bool finite = true;
+                for (unsigned int c = 0; c < n_written; ++c)
+                  finite = finite && std::isfinite(batch.stress[p][c]);
+                if (!finite && (!local.failed || first->get_id() < local.id))
+                  local = {true, first->get_id(), first->get_location()};
               }
           batch.clear();
-          points.clear();
         };
 
         for (unsigned int c = begin; c < end; ++c)
           {
             const auto & particles = cells[c].particles;
             unsigned int body      = numbers::invalid_unsigned_int;
-            // sized for the cell before pointers into it are taken
-            stresses.resize(std::distance(particles.begin(), particles.end()));
+            auto         first     = particles.begin();
             for (auto particle = particles.begin(); particle != particles.end(); ++particle)
               {
                 const auto         props = particle->get_properties();
                 const unsigned int b     = static_cast<unsigned int>(props[Layout::body]);
                 if (b != body)
                   {
-                    finish_batch(body);
-                    body = b;
+                    finish_batch(body, first);
+                    body  = b;
+                    first = particle;
                   }
-                const Tensor<2, dim> L = velocity_gradients[particle->get_local_index()];
-                Tensor<2, dim>       F = Layout::deformation_gradient(props);
-                F                      = (identity + time_step * L) * F;
+                const Tensor<2, dim> &L = velocity_gradients[particle->get_local_index()];
+                Tensor<2, dim>        F = Layout::deformation_gradient(props);
+                F                       = (identity + time_step * L) * F;
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Layout::deformation + i * dim + j] = F[i][j];
-                const unsigned int p = batch.size();
-                stresses[p]          = Layout::stress_tensor(props);
-                batch.L.push_back(embed_in_3d<dim>(L, 0.));
-                batch.F.push_back(embed_in_3d<dim>(F, 1.));
-                batch.stress.push_back(&stresses[p]);
+                batch.L.push_back(L);
+                batch.F.push_back(F);
+                batch.stress.push_back(&props[Layout::stress]);
                 batch.history.push_back(layout.n_history > 0 ? &props[layout.history] : nullptr);
-                points.push_back(particle);
               }
-            finish_batch(body);
+            finish_batch(body, first);
           }
         if (local.failed)
           {

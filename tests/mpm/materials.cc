@@ -30,13 +30,29 @@
 //     spin L = W rotates the stress: trace exactly invariant, s:s drifts by
 //     at most (1 + 4 w^2 dt^2)^N - 1 = O(dt) (see rigid_rotation()), the
 //     result converges to R sigma_0 R^T at first order.
+// (d) plane strain: each model's batched update of 2D points
+//     (update_stresses() on MaterialPointBatch<2>, the model's own kernel on
+//     the 2D data) against its 3D update_stress() with L and F embedded
+//     (zero third row and column of L, F_33 = 1), over 20 steps of 200
+//     random points (von Mises: some yielding, some not). The kernels drop
+//     only terms that are exact zeros and keep the order of the remaining
+//     operations, so they must agree to the last bit; the tolerance,
+//     1e-15 of the largest stress, admits only a differently contracted
+//     multiply-add of another compiler. sigma_xz and sigma_yz stay zero.
+//     The same for the generic plane-strain update through the 3D one (a
+//     model without its own kernel), and the 3D batch against update_stress().
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <sable/mpm/materials/hypoelastic.h>
 #include <sable/mpm/materials/material.h>
+#include <sable/mpm/materials/neo_hookean.h>
+#include <sable/mpm/materials/von_mises.h>
 #include <sable/mpm/parameters.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <string>
@@ -410,6 +426,137 @@ namespace
                      error[0] / error[1], 2., 0.01);
     }
   }
+
+  // ---------------------------------------------------------------- (d)
+  template <typename Model>
+  void
+  plane_strain(const sable::mpm::MaterialParameters &p, const double stress_scale, std::mt19937 &rng)
+  {
+    using sable::mpm::MaterialPointBatch;
+    using sable::mpm::PlaneStrainStress;
+    const std::string name = p.model + ", plane strain: ";
+    const Model       model(p);
+    // its base: the generic plane-strain update through update_stress()
+    const sable::mpm::BatchedMaterial<Model> &generic_update = model;
+    const bool        plastic = model.n_history() > 0;
+    const double      dt      = 1e-3;
+
+    std::uniform_real_distribution<double> u(-1., 1.);
+    const unsigned int                     n_points = 200;
+    // per point: its own kernel (batch), the generic one, the 3D update
+    std::vector<std::array<double, 6>> batched(n_points), generic(n_points);
+    std::vector<SymmetricTensor<2, 3>> full_3d(n_points);
+    std::vector<double> h_batched(n_points), h_generic(n_points), h_3d(n_points);
+    std::vector<Tensor<2, 2>> L(n_points), F(n_points);
+    for (unsigned int k = 0; k < n_points; ++k)
+      {
+        for (unsigned int i = 0; i < 2; ++i)
+          for (unsigned int j = 0; j < 2; ++j)
+            {
+              L[k][i][j] = 2. * u(rng);
+              F[k][i][j] = (i == j ? 1. : 0.) + 0.2 * u(rng);
+            }
+        for (const unsigned int c : {0u, 1u, 2u, 3u})
+          batched[k][c] = stress_scale * u(rng);
+        batched[k][4] = batched[k][5] = 0.;
+        generic[k] = batched[k];
+        for (unsigned int c = 0; c < 6; ++c)
+          full_3d[k].access_raw_entry(c) = batched[k][c];
+        h_batched[k] = h_generic[k] = h_3d[k] = plastic ? 0.01 * (1. + u(rng)) : 0.;
+      }
+
+    double       max_difference = 0, max_generic_difference = 0, max_off_plane = 0, largest = 0;
+    unsigned int n_bitwise = 0, n_yielded = 0;
+    for (unsigned int step = 0; step < 20; ++step)
+      {
+        MaterialPointBatch<2> batch;
+        for (unsigned int k = 0; k < n_points; ++k)
+          {
+            F[k] = (Tensor<2, 2>(unit_symmetric_tensor<2>()) + dt * L[k]) * F[k];
+            batch.L.push_back(L[k]);
+            batch.F.push_back(F[k]);
+            batch.stress.push_back(batched[k].data());
+            batch.history.push_back(plastic ? &h_batched[k] : nullptr);
+          }
+        model.update_stresses(batch, dt);
+        for (unsigned int k = 0; k < n_points; ++k)
+          {
+            PlaneStrainStress s{generic[k][0], generic[k][1], generic[k][2], generic[k][3]};
+            generic_update.update_plane_strain_stress(L[k], F[k], dt, s, plastic ? &h_generic[k] : nullptr);
+            generic[k] = {{s.xx, s.yy, s.zz, s.xy, generic[k][4], generic[k][5]}};
+
+            const double before = h_3d[k];
+            model.update_stress(sable::mpm::embed_in_3d<2>(L[k], 0.),
+                                sable::mpm::embed_in_3d<2>(F[k], 1.),
+                                dt,
+                                full_3d[k],
+                                plastic ? &h_3d[k] : nullptr);
+            n_yielded += h_3d[k] > before;
+
+            bool same = h_batched[k] == h_3d[k];
+            for (unsigned int c = 0; c < 6; ++c)
+              {
+                const double expected = full_3d[k].access_raw_entry(c);
+                largest               = std::max(largest, std::abs(expected));
+                max_difference = std::max(max_difference, std::abs(batched[k][c] - expected));
+                max_generic_difference =
+                  std::max(max_generic_difference, std::abs(generic[k][c] - expected));
+                same = same && batched[k][c] == expected;
+              }
+            max_off_plane = std::max({max_off_plane,
+                                      std::abs(batched[k][4]),
+                                      std::abs(batched[k][5]),
+                                      std::abs(full_3d[k][0][2]),
+                                      std::abs(full_3d[k][1][2])});
+            max_difference = std::max(max_difference, std::abs(h_batched[k] - h_3d[k]));
+            n_bitwise += same;
+          }
+      }
+    check(name + std::to_string(n_bitwise) + " of " + std::to_string(20 * n_points) +
+            " point-steps identical to the 3D update to the last bit",
+          true);
+    check_relative(name + "max |sigma_2D - sigma_3D| (and plastic strain) / max |sigma|",
+                   max_difference / largest, 0., 1e-15, 1.);
+    check_relative(name + "generic plane-strain update: max |sigma - sigma_3D| / max |sigma|",
+                   max_generic_difference / largest, 0., 1e-15, 1.);
+    check(name + "sigma_xz = sigma_yz = 0 in 2D and 3D", max_off_plane == 0.);
+    if (plastic)
+      check(name + std::to_string(n_yielded) + " plastic and " +
+              std::to_string(20 * n_points - n_yielded) + " elastic point-steps",
+            n_yielded > 100 && n_yielded < 20 * n_points - 100);
+
+    // the 3D batch: update_stress() point by point
+    MaterialPointBatch<3>              batch;
+    std::vector<std::array<double, 6>> stresses(n_points);
+    double                             max_3d_difference = 0;
+    for (unsigned int k = 0; k < n_points; ++k)
+      {
+        Tensor<2, 3> L3, F3 = unit_symmetric_tensor<3>();
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              L3[i][j] = 2. * u(rng);
+              F3[i][j] += 0.2 * u(rng);
+            }
+        for (unsigned int c = 0; c < 6; ++c)
+          stresses[k][c] = full_3d[k].access_raw_entry(c) = stress_scale * u(rng);
+        batch.L.push_back(L3);
+        batch.F.push_back(F3);
+        batch.stress.push_back(stresses[k].data());
+        batch.history.push_back(plastic ? &h_batched[k] : nullptr);
+        h_3d[k] = h_batched[k];
+      }
+    model.update_stresses(batch, dt);
+    for (unsigned int k = 0; k < n_points; ++k)
+      {
+        model.update_stress(batch.L[k], batch.F[k], dt, full_3d[k], plastic ? &h_3d[k] : nullptr);
+        for (unsigned int c = 0; c < 6; ++c)
+          max_3d_difference =
+            std::max(max_3d_difference, std::abs(stresses[k][c] - full_3d[k].access_raw_entry(c)));
+        max_3d_difference = std::max(max_3d_difference, std::abs(h_batched[k] - h_3d[k]));
+      }
+    check(name + "3D batch identical to update_stress() point by point", max_3d_difference == 0.);
+  }
 } // namespace
 
 int
@@ -420,5 +567,20 @@ main()
   von_mises_uniaxial_strain(-1.);
   neo_hookean(rng);
   hypoelastic();
+  {
+    sable::mpm::MaterialParameters p;
+    p.model = "linear elastic";
+    p.set_young_poisson(1e9, 0.25);
+    plane_strain<sable::mpm::Hypoelastic>(p, 1e6, rng);
+    p.model = "neo-Hookean";
+    plane_strain<sable::mpm::NeoHookean>(p, 1e6, rng);
+    // stresses up to 1.5 yield stresses, plastic strains up to 0.02: some
+    // points yield, some do not
+    p.model = "von Mises";
+    p.set_young_poisson(70e9, 0.3);
+    p.yield_stress      = 250e6;
+    p.hardening_modulus = 2e9;
+    plane_strain<sable::mpm::VonMises>(p, 0.9 * p.yield_stress, rng);
+  }
   return sable_tests::exit_code();
 }

@@ -7,10 +7,15 @@
 #          (16,384 points)
 #   floor: a 1 m square dropped on a fixed floor under gravity in a 2 m grid
 #          of 256^2 cells, three quarters of it empty (65,536 points)
+#   grains: a 1 m square of 128^2 cells cut into 50 x 50 square grains of
+#          25-26 points (65,536 points; the grain size of issue 13's
+#          10,000 grains), each with its own velocity, frictional contact
+#          (Bardenhagen 2001, mu = 0.3), slip walls
 # Prints the instructions of the whole run, of Simulator::advance() (the
-# steps), of the statistics (their first row included) and of deal.II's
-# particle sort, and the instructions per particle-step. Each scene runs
-# with 'Statistics interval' 1 (every step) and 0 (the default).
+# steps), of the statistics (their first row included), of deal.II's
+# particle sort and of finding the contact nodes, and the instructions per
+# particle-step. box and floor run with 'Statistics interval' 1 (every
+# step) and 0 (the default), grains with 0.
 # Usage: contrib/benchmarks/throughput/callgrind.sh [build dir] [steps]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
@@ -54,26 +59,67 @@ end
 PRM
 }
 
+# half-open grains (upper corner 1e-12 short), so that each point is in one
+grains() {
+  cat <<PRM
+set Dimension = 2
+set Output directory = $work/out_grains
+set Number of bodies = 2500
+subsection Time
+  set End time = 100
+  set Maximum number of steps = $steps
+  set CFL number = 0.5
+end
+subsection Grid
+  set Lower corner = 0, 0
+  set Upper corner = 1, 1
+  set Subdivisions = 128, 128
+end
+subsection Boundary conditions
+  set Types = 0: slip, 1: slip, 2: slip, 3: slip
+end
+subsection Contact
+  set Model = bardenhagen 2001
+  set Friction coefficient = 0.3
+end
+subsection Output
+  set Statistics interval = 0
+  set Progress interval = 1000000
+end
+PRM
+  awk 'BEGIN { srand(42); w = 0.02
+    for (i = 0; i < 50; ++i) for (j = 0; j < 50; ++j) {
+      printf "subsection Body %d\n  set Shape = box\n", 50 * i + j
+      printf "  set Lower corner = %.17g, %.17g\n", i * w, j * w
+      printf "  set Upper corner = %.17g, %.17g\n", (i + 1) * w - 1e-12, (j + 1) * w - 1e-12
+      printf "  set Particles per cell direction = 2\n  set Density = 1000\n"
+      printf "  set Young\047s modulus = 1e6\n  set Poisson\047s ratio = 0.3\n"
+      printf "  set Velocity = %.3f, %.3f\nend\n", rand() - 0.5, rand() - 0.5 } }'
+}
+
 scene box "1, 1" "64, 64" "1, 1" "0, 0" "0: slip, 1: slip, 2: slip, 3: slip" \
   "Velocity = 0.1, 0.05" > "$work/box.prm"
 scene floor "2, 2" "256, 256" "1, 1" "0, -9.81" "2: fixed" "Density = 1000" > "$work/floor.prm"
-for name in box floor; do
-  for interval in 1 0; do
-    sed -i "s/Statistics interval = .*/Statistics interval = $interval/" "$work/$name.prm"
-    DEAL_II_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$work/$name.out" \
-      "$build/sable" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
-      { echo "$name, statistics interval $interval: $(grep -m1 'sable:' "$work/$name.log")"; continue; }
-    callgrind_annotate --inclusive=yes --threshold=100 "$work/$name.out" > "$work/$name.txt" 2> /dev/null
-    count() { grep -E '^ *[0-9,]+ ' "$work/$name.txt" | grep -F -m1 "$1" | awk '{print $1}' | tr -d , || true; }
-    total=$(grep -o "summary: [0-9]*" "$work/$name.out" | awk '{print $2}')
-    advance=$(count "Simulator<2>::advance() [")
-    statistics=$(count "Simulator<2>::compute_statistics() const [")
-    sort=$(count "sort_particles_into_subdomains_and_cells() [")
-    particles=$(grep -o '[0-9]* material points' "$work/$name.log" | cut -d' ' -f1)
-    echo "$name, statistics interval $interval: $particles points, $steps steps: total $total," \
-      "advance ${advance:-0}, statistics ${statistics:-0}, deal.II sort ${sort:-0} instructions;" \
-      "per particle-step $(( ${advance:-0} / (particles * steps) )) (advance)," \
-      "$(( (${advance:-0} + ${statistics:-0}) / (particles * steps) )) (with the statistics);" \
-      "$(grep -o 'Particle sort in .* steps' "$work/$name.log" || echo 'sorted every step')"
-  done
+grains > "$work/grains.prm"
+for run in box:1 box:0 floor:1 floor:0 grains:0; do
+  name=${run%:*} interval=${run#*:}
+  sed -i "s/Statistics interval = .*/Statistics interval = $interval/" "$work/$name.prm"
+  rm -rf "$work/out_$name" # sable refuses to write over an earlier run's results
+  DEAL_II_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$work/$name.out" \
+    "$build/sable" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
+    { echo "$name, statistics interval $interval: $(grep -m1 'sable:' "$work/$name.log")"; continue; }
+  callgrind_annotate --inclusive=yes --threshold=100 "$work/$name.out" > "$work/$name.txt" 2> /dev/null
+  count() { grep -E '^ *[0-9,]+ ' "$work/$name.txt" | grep -F -m1 "$1" | awk '{print $1}' | tr -d , || true; }
+  total=$(grep -o "summary: [0-9]*" "$work/$name.out" | awk '{print $2}')
+  advance=$(count "Simulator<2>::advance() [")
+  statistics=$(count "Simulator<2>::compute_statistics() const [")
+  sort=$(count "sort_particles_into_subdomains_and_cells() [")
+  contact=$(count "MultiBodyContact<2>::mark_contact_nodes(")
+  particles=$(grep -o '[0-9]* material points' "$work/$name.log" | cut -d' ' -f1)
+  echo "$name, statistics interval $interval: $particles points, $steps steps: total $total," \
+    "advance ${advance:-0}, statistics ${statistics:-0}, deal.II sort ${sort:-0}," \
+    "contact nodes ${contact:-0} instructions;" \
+    "per particle-step $(( ${advance:-0} / (particles * steps) )) (advance)," \
+    "$(( (${advance:-0} + ${statistics:-0}) / (particles * steps) )) (with the statistics);" \
+    "$(grep -o 'Particle sort in .* steps' "$work/$name.log" || echo 'sorted every step')"
 done

@@ -18,7 +18,8 @@ namespace sable::mpm
    * grid-to-particle pass stored. Threaded over the locally owned cells
    * with points (ParticleCells);
    * within a cell the points of one body go to their material as one batch
-   * (Material::update_stresses()). Each point depends only on its own
+   * (Material::update_stresses(), in 2D on the 2D data), with one
+   * finiteness test per batch. Each point depends only on its own
    * data, so threads change nothing.
    */
   template <int dim>

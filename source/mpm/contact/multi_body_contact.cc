@@ -20,34 +20,31 @@ namespace sable::mpm
 
   template <int dim>
   void
-  MultiBodyContact<dim>::mark_contact_nodes(
-    const CellColouring<dim> &             colouring,
-    const Particles::ParticleHandler<dim> &particle_handler,
-    const Grid<dim> &                      grid,
-    const ParticleLayout<dim> &            layout)
+  MultiBodyContact<dim>::mark_contact_nodes(const ParticleCells<dim> & cells,
+                                            const Grid<dim> &          grid,
+                                            const ParticleLayout<dim> &layout)
   {
     fields.clear(grid.n_relevant_nodes());
-    // blocks of one colour share no node, so their threads mark different
-    // nodes; the extra (node, body) pairs are collected per range of cells
-    // and sorted by allocate(), so the table does not depend on the threads
+    // only the cells with points, colour by colour: blocks of one colour
+    // share no node, so their threads mark different nodes; the extra
+    // (node, body) pairs are collected per range of cells and sorted by
+    // allocate(), so the table does not depend on the threads
     std::mutex mutex;
-    colouring.for_each_cell_range([&](const auto begin, const auto end) {
+    cells.for_each_coloured_range([&](const unsigned int *begin, const unsigned int *end) {
       std::vector<unsigned int>                          bodies;
       std::vector<std::pair<unsigned int, unsigned int>> extra;
-      for (auto cell = begin; cell != end; ++cell)
+      for (const unsigned int *c = begin; c != end; ++c)
         {
-          const auto particles = particle_handler.particles_in_cell(*cell);
-          if (particles.begin() == particles.end())
-            continue;
+          const auto &cell = cells[*c];
           bodies.clear();
-          for (const auto &particle : particles)
+          for (const auto &particle : cell.particles)
             {
               const unsigned int body =
                 static_cast<unsigned int>(particle.get_properties()[layout.body]);
               if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
                 bodies.push_back(body);
             }
-          const auto [nodes, n_nodes] = grid.cell_nodes(grid.cell_data(*cell));
+          const auto [nodes, n_nodes] = grid.cell_nodes(*cell.data);
           for (unsigned int k = 0; k < n_nodes; ++k)
             for (const unsigned int body : bodies)
               fields.add(nodes[k], body, extra);

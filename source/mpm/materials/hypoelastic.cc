@@ -25,6 +25,16 @@ namespace sable::mpm
     stress = jaumann_elastic_update(L, dt, stress);
   }
 
+  void
+  Hypoelastic::update_plane_strain_stress(const Tensor<2, 2> &L,
+                                          const Tensor<2, 2> &,
+                                          const double        dt,
+                                          PlaneStrainStress & stress,
+                                          double *) const
+  {
+    stress = jaumann_elastic_update(L, dt, stress);
+  }
+
   double
   Hypoelastic::strain_energy_density(const SymmetricTensor<2, 3> &stress,
                                      const Tensor<2, 3> &         F) const

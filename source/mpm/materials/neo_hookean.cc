@@ -31,6 +31,28 @@ namespace sable::mpm
              G * std::pow(J, -5. / 3.) * deviator(b);
   }
 
+  void
+  NeoHookean::update_plane_strain_stress(const Tensor<2, 2> &,
+                                         const Tensor<2, 2> &F,
+                                         const double,
+                                         PlaneStrainStress &stress,
+                                         double *) const
+  {
+    const double K = parameters.bulk_modulus, G = parameters.shear_modulus;
+    const double J = determinant(F);
+    // b = F F^T with b_zz = 1, b_xz = b_yz = 0
+    const double b_xx   = F[0][0] * F[0][0] + F[0][1] * F[0][1];
+    const double b_yy   = F[1][0] * F[1][0] + F[1][1] * F[1][1];
+    const double b_xy   = F[0][0] * F[1][0] + F[0][1] * F[1][1];
+    const double mean   = (b_xx + b_yy + 1.) / 3.;
+    const double volume = 0.5 * K * (J - 1. / J);
+    const double shear  = G * std::pow(J, -5. / 3.);
+    stress = {volume + shear * (b_xx - mean),
+              volume + shear * (b_yy - mean),
+              volume + shear * (1. - mean),
+              shear * b_xy};
+  }
+
   double
   NeoHookean::strain_energy_density(const SymmetricTensor<2, 3> &,
                                     const Tensor<2, 3> &F) const

@@ -72,6 +72,35 @@ namespace sable::mpm
     stress = trial - (3. * G * increment / q) * s;
   }
 
+  void
+  VonMises::update_plane_strain_stress(const Tensor<2, 2> &L,
+                                       const Tensor<2, 2> &,
+                                       const double        dt,
+                                       PlaneStrainStress & stress,
+                                       double *            history) const
+  {
+    // update_stress() on the 2D data: s_xz = s_yz = 0
+    const double            G = parameters.shear_modulus, H = parameters.hardening_modulus;
+    const PlaneStrainStress trial = jaumann_elastic_update(L, dt, stress);
+    const double            mean  = (trial.xx + trial.yy + trial.zz) / 3.;
+    const PlaneStrainStress s = {trial.xx - mean, trial.yy - mean, trial.zz - mean, trial.xy};
+    const double q = std::sqrt(1.5 * (2. * (s.xy * s.xy) + s.xx * s.xx + s.yy * s.yy + s.zz * s.zz));
+    double &     plastic_strain = history[0];
+    const double yield_stress   = parameters.yield_stress + H * plastic_strain;
+    if (q <= yield_stress)
+      {
+        stress = trial;
+        return;
+      }
+    const double increment = (q - yield_stress) / (3. * G + H);
+    plastic_strain += increment;
+    const double factor = 3. * G * increment / q;
+    stress = {trial.xx - factor * s.xx,
+              trial.yy - factor * s.yy,
+              trial.zz - factor * s.zz,
+              trial.xy - factor * s.xy};
+  }
+
   double
   VonMises::strain_energy_density(const SymmetricTensor<2, 3> &stress,
                                   const Tensor<2, 3> &         F) const

@@ -10,6 +10,7 @@
 #include <sable/mpm/contact/body_fields.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/grid_pass.h>
+#include <sable/mpm/particle_cells.h>
 #include <sable/mpm/particle_layout.h>
 
 namespace sable::mpm
@@ -43,12 +44,11 @@ namespace sable::mpm
                      const std::vector<unsigned int> &particles_per_direction = {});
 
     /// Find this step's contact nodes (bodies per node) and create their
-    /// zeroed records; threaded over the cells of @p colouring.
+    /// zeroed records; threaded over the coloured cells with points.
     void
-    mark_contact_nodes(const CellColouring<dim> &             colouring,
-                       const Particles::ParticleHandler<dim> &particle_handler,
-                       const Grid<dim> &                      grid,
-                       const ParticleLayout<dim> &            layout);
+    mark_contact_nodes(const ParticleCells<dim> & cells,
+                       const Grid<dim> &          grid,
+                       const ParticleLayout<dim> &layout);
 
     /// Zero the records' mass, momentum and force for a second scatter
     /// (MUSL's remapped momenta) on the same contact nodes.

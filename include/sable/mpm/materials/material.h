@@ -28,15 +28,25 @@ namespace sable::mpm
     return result;
   }
 
+  /// The stress of a point in plane strain (2D): the in-plane components
+  /// and sigma_zz. sigma_xz = sigma_yz = 0: they are seeded zero, and a
+  /// velocity gradient in the plane keeps them zero.
+  struct PlaneStrainStress
+  {
+    double xx, yy, zz, xy;
+  };
+
   /// The points of one body in one cell, as update_stresses() takes them:
-  /// velocity and deformation gradients (3D, see Material), and where each
-  /// point's stress and history are.
+  /// velocity gradient over the step and deformation gradient at its end
+  /// (dim x dim), and where each point's stress (the six components
+  /// xx yy zz xy xz yz, updated in place) and history are.
+  template <int dim>
   struct MaterialPointBatch
   {
-    std::vector<Tensor<2, 3>>            L;
-    std::vector<Tensor<2, 3>>            F;
-    std::vector<SymmetricTensor<2, 3> *> stress;
-    std::vector<double *>                history;
+    std::vector<Tensor<2, dim>> L;
+    std::vector<Tensor<2, dim>> F;
+    std::vector<double *>       stress;
+    std::vector<double *>       history;
 
     unsigned int
     size() const
@@ -55,9 +65,10 @@ namespace sable::mpm
   };
 
   /**
-   * A constitutive model. Kinematics are always three-dimensional: in 2D
-   * (plane strain) the velocity gradient has a zero third row and column
-   * and F_33 = 1, so sigma_zz is carried and plasticity sees it.
+   * A constitutive model. Kinematics are three-dimensional: in 2D (plane
+   * strain) the velocity gradient has a zero third row and column and
+   * F_33 = 1, so sigma_zz is carried and plasticity sees it. The batched
+   * update of 2D points computes this on the 2D data (PlaneStrainStress).
    * Each model stores only the history it needs (n_history() doubles per
    * material point).
    */
@@ -95,10 +106,13 @@ namespace sable::mpm
     /**
      * update_stress() for a batch of points of one body (the points of one
      * cell): one virtual call per batch, the model's own update inlined in
-     * the loop (BatchedMaterial).
+     * the loop (BatchedMaterial); in 2D the model's plane-strain update.
      */
     virtual void
-    update_stresses(const MaterialPointBatch &batch, const double dt) const = 0;
+    update_stresses(const MaterialPointBatch<2> &batch, const double dt) const = 0;
+
+    virtual void
+    update_stresses(const MaterialPointBatch<3> &batch, const double dt) const = 0;
 
     /// Stored elastic energy per unit reference volume.
     virtual double
@@ -135,11 +149,39 @@ namespace sable::mpm
     jaumann_elastic_update(const Tensor<2, 3> &          L,
                            const double                  dt,
                            const SymmetricTensor<2, 3> &stress) const;
+
+    /// The same in plane strain, on the 2D data.
+    PlaneStrainStress
+    jaumann_elastic_update(const Tensor<2, 2> &     L,
+                           const double             dt,
+                           const PlaneStrainStress &stress) const;
   };
 
-  /// Implements Material::update_stresses() for a final model class
-  /// @p Model by calling its update_stress() directly (no virtual call per
-  /// point).
+  inline PlaneStrainStress
+  Material::jaumann_elastic_update(const Tensor<2, 2> &     L,
+                                   const double             dt,
+                                   const PlaneStrainStress &stress) const
+  {
+    // the 3 x 3 update without its zero terms (W_12 = w, W_21 = -w), in
+    // the same order of operations: the same bits
+    const double K = parameters.bulk_modulus, G = parameters.shear_modulus;
+    const double lambda_trace = (K - 2. / 3. * G) * (L[0][0] + L[1][1]);
+    const double w            = 0.5 * (L[0][1] - L[1][0]);
+    PlaneStrainStress result;
+    result.xx = stress.xx + dt * (2. * (w * stress.xy + G * L[0][0]) + lambda_trace);
+    result.yy = stress.yy + dt * (2. * (-w * stress.xy + G * L[1][1]) + lambda_trace);
+    result.zz = stress.zz + dt * lambda_trace;
+    result.xy = stress.xy + dt * (w * stress.yy - w * stress.xx + G * (L[0][1] + L[1][0]));
+    return result;
+  }
+
+  /**
+   * Implements Material::update_stresses() for a final model class
+   * @p Model by calling its update_stress() directly (no virtual call per
+   * point), and in 2D its update_plane_strain_stress(): the model's own
+   * plane-strain kernel if it has one, else the one below through its 3D
+   * update.
+   */
   template <typename Model>
   class BatchedMaterial : public Material
   {
@@ -147,11 +189,53 @@ namespace sable::mpm
     using Material::Material;
 
     void
-    update_stresses(const MaterialPointBatch &batch, const double dt) const final
+    update_stresses(const MaterialPointBatch<2> &batch, const double dt) const final
     {
       const Model &model = static_cast<const Model &>(*this);
       for (unsigned int p = 0; p < batch.size(); ++p)
-        model.Model::update_stress(batch.L[p], batch.F[p], dt, *batch.stress[p], batch.history[p]);
+        {
+          double *const     s = batch.stress[p];
+          PlaneStrainStress stress{s[0], s[1], s[2], s[3]};
+          model.Model::update_plane_strain_stress(batch.L[p], batch.F[p], dt, stress, batch.history[p]);
+          s[0] = stress.xx;
+          s[1] = stress.yy;
+          s[2] = stress.zz;
+          s[3] = stress.xy;
+        }
+    }
+
+    void
+    update_stresses(const MaterialPointBatch<3> &batch, const double dt) const final
+    {
+      const Model &model = static_cast<const Model &>(*this);
+      for (unsigned int p = 0; p < batch.size(); ++p)
+        {
+          double *const         s = batch.stress[p];
+          SymmetricTensor<2, 3> stress;
+          for (unsigned int c = 0; c < 6; ++c)
+            stress.access_raw_entry(c) = s[c];
+          model.Model::update_stress(batch.L[p], batch.F[p], dt, stress, batch.history[p]);
+          for (unsigned int c = 0; c < 6; ++c)
+            s[c] = stress.access_raw_entry(c);
+        }
+    }
+
+    /// The plane-strain update through the 3D one (L and F embedded).
+    void
+    update_plane_strain_stress(const Tensor<2, 2> &L,
+                               const Tensor<2, 2> &F,
+                               const double        dt,
+                               PlaneStrainStress & stress,
+                               double *            history) const
+    {
+      SymmetricTensor<2, 3> s;
+      s[0][0] = stress.xx;
+      s[1][1] = stress.yy;
+      s[2][2] = stress.zz;
+      s[0][1] = stress.xy;
+      static_cast<const Model &>(*this).Model::update_stress(
+        embed_in_3d<2>(L, 0.), embed_in_3d<2>(F, 1.), dt, s, history);
+      stress = {s[0][0], s[1][1], s[2][2], s[0][1]};
     }
   };
 

@@ -35,6 +35,14 @@ namespace sable::mpm
                   SymmetricTensor<2, 3> &stress,
                   double *               history) const override;
 
+    /// update_stress() in plane strain, on the 2D data.
+    void
+    update_plane_strain_stress(const Tensor<2, 2> &L,
+                               const Tensor<2, 2> &F,
+                               const double        dt,
+                               PlaneStrainStress & stress,
+                               double *            history) const;
+
     double
     strain_energy_density(const SymmetricTensor<2, 3> &stress,
                           const Tensor<2, 3> &         F) const override;
