@@ -180,6 +180,14 @@ namespace sable::mpm
                       "momentum interpolated from the coarse side. Cell "
                       "fields: material_points (number in the cell), level "
                       "(refinement level) and rank (owning MPI rank).");
+    prm.declare_entry("Displacement output",
+                      "false",
+                      Patterns::Bool(),
+                      "Write each material point's displacement (position "
+                      "minus the position it was seeded at, m) with the "
+                      "particle output. The points then keep their initial "
+                      "position: dim more values per point in memory and in "
+                      "checkpoints, so this entry cannot change on --resume.");
     prm.declare_entry("Statistics interval",
                       "0",
                       Patterns::Integer(0),
@@ -236,7 +244,8 @@ namespace sable::mpm
                                                "Time/CFL number",
                                                "Solver/Balance particles across ranks",
                                                "Solver/Settling steps"};
-    return free.count(name) > 0 || (name.rfind("Output/", 0) == 0 && name != "Output/Output format");
+    return free.count(name) > 0 || (name.rfind("Output/", 0) == 0 && name != "Output/Output format" &&
+                                    name != "Output/Displacement output");
   }
 
   template <int dim>
@@ -353,6 +362,7 @@ namespace sable::mpm
     p.checkpoint_interval = prm.get_integer("Checkpoint interval");
     p.contact_node_output = prm.get_bool("Contact node output");
     p.grid_output         = prm.get_bool("Grid output");
+    p.displacement_output = prm.get_bool("Displacement output");
     p.statistics_interval = prm.get_integer("Statistics interval");
     p.progress_interval   = prm.get_integer("Progress interval");
     p.energy_growth_limit = prm.get_double("Energy growth limit");

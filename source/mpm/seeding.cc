@@ -68,6 +68,9 @@ namespace sable::mpm
                     for (unsigned int d = 0; d < 3; ++d)
                       properties[layout.stress + d] = -pressure;
                   }
+                if (layout.initial_position_stored)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    properties[layout.initial_position() + d] = x[d];
                 particle_handler.insert_particle(x, reference, next_id++, cell,
                                                   make_array_view(properties));
               }
