@@ -184,10 +184,11 @@ namespace sable::mpm
                       "false",
                       Patterns::Bool(),
                       "Write each material point's displacement (position "
-                      "minus the position it was seeded at, m) with the "
-                      "particle output. The points then keep their initial "
-                      "position: dim more values per point in memory and in "
-                      "checkpoints, so this entry cannot change on --resume.");
+                      "minus its position at time 0, after any settling, m) "
+                      "with the particle output. The points then keep their "
+                      "initial position: dim more values per point in memory "
+                      "and in checkpoints, so this entry cannot change on "
+                      "--resume.");
     prm.declare_entry("Statistics interval",
                       "0",
                       Patterns::Integer(0),
