@@ -656,6 +656,14 @@ namespace sable::mpm
                                    parameters.output_directory + "': " + problem);
       });
     }
+    // deal.II's output holds floats: integers are exact up to 2^24
+    if (particle_handler->get_next_free_particle_index() > (1u << 24) && !id_precision_warned)
+      {
+        id_precision_warned = true;
+        pcout << "warning: the particle output writes ids as single-precision floats, "
+              << "exact only below 16777216; this run has ids up to "
+              << particle_handler->get_next_free_particle_index() - 1 << std::endl;
+      }
     std::vector<std::string> history_names;
     for (const auto &material : materials)
       if (material->n_history() == layout.n_history)
