@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# What each contact option costs per step, as instruction counts under
+# valgrind's callgrind (they do not depend on the load of a shared machine).
+# Scene: 64 elastic disks (R = 0.05 m, 8 cells per diameter, 2x2 points per
+# cell) in a square lattice, each touching its neighbours, on a fixed floor
+# under gravity, 2D, MUSL, one thread, output off, 20 steps (or the number
+# given). Variants: the defaults, each contact option changed alone, and
+# contact 'none' (one velocity field: the single-field step).
+# Prints the instructions of Simulator::advance() (the steps) per variant
+# and its ratio to the default.
+# Usage: contrib/benchmarks/contact_options/callgrind.sh [build dir] [steps]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
+build="${1:-$root/build}"
+steps="${2:-20}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+scene() { # contact entries
+  cat <<PRM
+set Dimension = 2
+set Output directory = $work/out
+set Number of bodies = 64
+set Gravity = 0, -9.81
+subsection Time
+  set End time = 100
+  set Maximum number of steps = $steps
+end
+subsection Grid
+  set Lower corner = 0, 0
+  set Upper corner = 1, 1
+  set Subdivisions = 80, 80
+end
+subsection Boundary conditions
+  set Types = 2: fixed
+end
+subsection Output
+  set Progress interval = 1000000
+end
+subsection Contact
+  set Model = bardenhagen 2001
+  set Friction coefficient = 0.3
+$1
+end
+PRM
+  for i in $(seq 0 63); do
+    printf 'subsection Body %d\n  set Shape = disk\n  set Radius = 0.05\n' "$i"
+    awk -v i="$i" 'BEGIN { printf "  set Center = %g, %g\n", 0.1 + 0.1 * (i % 8), 0.05 + 0.1 * int(i / 8) }'
+    printf "  set Particles per cell direction = 2\n  set Young's modulus = 1e7\n  set Density = 1000\nend\n"
+  done
+}
+
+variants=("defaults|"
+          "Detection = shared nodes|  set Detection = shared nodes"
+          "Normals = mass weighted|  set Normals = mass weighted"
+          "Nodes with three or more bodies = centre of mass|  set Nodes with three or more bodies = centre of mass"
+          "Model = bardenhagen 2000|  set Model = bardenhagen 2000"
+          "Friction coefficient = 0|  set Friction coefficient = 0"
+          "Model = none (single field)|  set Model = none")
+reference=0
+for variant in "${variants[@]}"; do
+  name="${variant%%|*}"
+  scene "${variant#*|}" > "$work/scene.prm"
+  rm -rf "$work/out"
+  DEAL_II_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$work/callgrind.out" \
+    "$build/sable" "$work/scene.prm" > "$work/log" 2>&1 ||
+    { echo "$name: $(grep -m1 'sable:' "$work/log")"; continue; }
+  callgrind_annotate --inclusive=yes --threshold=100 "$work/callgrind.out" > "$work/annotated" 2> /dev/null
+  advance=$(grep -E '^ *[0-9,]+ ' "$work/annotated" | grep -F -m1 "Simulator<2>::advance() [" | awk '{print $1}' | tr -d , || true)
+  if [ "$reference" -eq 0 ]; then reference=$advance; fi
+  points=$(grep -o '[0-9]* material points' "$work/log" | cut -d' ' -f1)
+  echo "$name: $points points, $steps steps: advance $advance instructions," \
+    "$(( advance / (points * steps) )) per particle-step, $(awk -v a="$advance" -v r="$reference" 'BEGIN { printf "%.3f", a / r }') x the defaults"
+done
