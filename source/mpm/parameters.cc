@@ -377,8 +377,11 @@ namespace sable::mpm
         prm.enter_subsection("Body " + std::to_string(b));
         BodyParameters<dim> body;
         body.parse_parameters(prm, "Body " + std::to_string(b) + "/");
-        locations.push_back(body.shape == BodyParameters<dim>::Shape::box ? "Lower corner" :
-                                                                            "Center");
+        if (body.shape == BodyParameters<dim>::Shape::points)
+          body.read_points(std::filesystem::path(filename).parent_path().string());
+        locations.push_back(body.shape == BodyParameters<dim>::Shape::box    ? "Lower corner" :
+                            body.shape == BodyParameters<dim>::Shape::points ? "Points file" :
+                                                                               "Center");
         locations.back() += " = " + prm.get(locations.back());
         prm.leave_subsection();
         p.bodies.push_back(body);
