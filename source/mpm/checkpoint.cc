@@ -278,7 +278,8 @@ namespace sable::mpm
                   "': the scene differs from the one the checkpoint was written with:" +
                   differences +
                   "\nOnly the time limits (Time/End time, Time/Maximum number of steps, "
-                  "Time/CFL number), the Output entries besides the Output format, Threads "
+                  "Time/CFL number), the Output entries besides the Output format and "
+                  "Displacement output, Threads "
                   "and Solver/Balance particles across ranks may change on resume. Give these "
                   "entries their earlier values, or start the run again with --overwrite.");
       }

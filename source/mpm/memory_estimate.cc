@@ -68,15 +68,19 @@ namespace sable::mpm
         else
           volume = (dim == 2 ? M_PI : 4. / 3. * M_PI) * std::pow(body.radius, dim);
         const double points =
-          volume / cell_volume * std::pow(double(body.particles_per_direction), dim);
+          body.shape == BodyParameters<dim>::Shape::points ?
+            body.cloud.positions.size() :
+            volume / cell_volume * std::pow(double(body.particles_per_direction), dim);
         estimate.material_points += points;
         if (points > largest)
           {
             largest = points;
             if (points * bytes_per_material_point[dim - 2] > grid_bytes)
               {
-                estimate.entry = "Body " + std::to_string(b) + "/Particles per cell direction";
-                estimate.value = std::to_string(body.particles_per_direction);
+                const bool file = body.shape == BodyParameters<dim>::Shape::points;
+                estimate.entry  = "Body " + std::to_string(b) +
+                                 (file ? "/Points file" : "/Particles per cell direction");
+                estimate.value = file ? body.points_file : std::to_string(body.particles_per_direction);
               }
           }
       }

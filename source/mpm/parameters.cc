@@ -180,6 +180,15 @@ namespace sable::mpm
                       "momentum interpolated from the coarse side. Cell "
                       "fields: material_points (number in the cell), level "
                       "(refinement level) and rank (owning MPI rank).");
+    prm.declare_entry("Displacement output",
+                      "false",
+                      Patterns::Bool(),
+                      "Write each material point's displacement (position "
+                      "minus its position at time 0, after any settling, m) "
+                      "with the particle output. The points then keep their "
+                      "initial position: dim more values per point in memory "
+                      "and in checkpoints, so this entry cannot change on "
+                      "--resume.");
     prm.declare_entry("Statistics interval",
                       "0",
                       Patterns::Integer(0),
@@ -236,7 +245,8 @@ namespace sable::mpm
                                                "Time/CFL number",
                                                "Solver/Balance particles across ranks",
                                                "Solver/Settling steps"};
-    return free.count(name) > 0 || (name.rfind("Output/", 0) == 0 && name != "Output/Output format");
+    return free.count(name) > 0 || (name.rfind("Output/", 0) == 0 && name != "Output/Output format" &&
+                                    name != "Output/Displacement output");
   }
 
   template <int dim>
@@ -353,6 +363,7 @@ namespace sable::mpm
     p.checkpoint_interval = prm.get_integer("Checkpoint interval");
     p.contact_node_output = prm.get_bool("Contact node output");
     p.grid_output         = prm.get_bool("Grid output");
+    p.displacement_output = prm.get_bool("Displacement output");
     p.statistics_interval = prm.get_integer("Statistics interval");
     p.progress_interval   = prm.get_integer("Progress interval");
     p.energy_growth_limit = prm.get_double("Energy growth limit");
@@ -366,8 +377,11 @@ namespace sable::mpm
         prm.enter_subsection("Body " + std::to_string(b));
         BodyParameters<dim> body;
         body.parse_parameters(prm, "Body " + std::to_string(b) + "/");
-        locations.push_back(body.shape == BodyParameters<dim>::Shape::box ? "Lower corner" :
-                                                                            "Center");
+        if (body.shape == BodyParameters<dim>::Shape::points)
+          body.read_points(std::filesystem::path(filename).parent_path().string());
+        locations.push_back(body.shape == BodyParameters<dim>::Shape::box    ? "Lower corner" :
+                            body.shape == BodyParameters<dim>::Shape::points ? "Points file" :
+                                                                               "Center");
         locations.back() += " = " + prm.get(locations.back());
         prm.leave_subsection();
         p.bodies.push_back(body);

@@ -4,6 +4,9 @@
 #include <sable/mpm/q1_shape.h>
 #include <sable/mpm/seeding.h>
 
+#include <algorithm>
+#include <numeric>
+
 namespace sable::mpm
 {
   template <int dim>
@@ -16,6 +19,11 @@ namespace sable::mpm
               Particles::ParticleHandler<dim> &                particle_handler)
   {
     const OwnedCellStrip<dim> owned_cells(triangulation);
+    // the grid's upper bounds (the coarse vertices are on every rank)
+    Point<dim> grid_upper = triangulation.get_vertices()[0];
+    for (const Point<dim> &v : triangulation.get_vertices())
+      for (unsigned int d = 0; d < dim; ++d)
+        grid_upper[d] = std::max(grid_upper[d], v[d]);
     types::particle_index     next_id = 0;
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
@@ -24,52 +32,100 @@ namespace sable::mpm
         const unsigned int         k        = body.particles_per_direction;
         const auto                 box      = body.bounding_box();
         const Point<dim>           top      = body.top_point(gravity);
-        const Point<dim>           centre =
-          body.shape == BodyParameters<dim>::Shape::disk ?
-            body.center :
-            Point<dim>((Tensor<1, dim>(body.lower_corner) + Tensor<1, dim>(body.upper_corner)) / 2.);
+        const Point<dim>           centre   = body.centre();
 
         std::vector<double> properties(layout.n_properties(), 0.);
         unsigned int        n_sub = 1;
         for (unsigned int d = 0; d < dim; ++d)
           n_sub *= k;
 
+        // one material point at x in cell (at @p reference in its unit cell)
+        const auto add_point = [&](const auto &      cell,
+                                   const Point<dim> &x,
+                                   const Point<dim> &reference,
+                                   const double      volume,
+                                   const Tensor<1, dim> *velocity) {
+          std::fill(properties.begin(), properties.end(), 0.);
+          properties[layout.mass]           = material.density() * volume;
+          properties[layout.initial_volume] = volume;
+          properties[layout.body]           = b;
+          // v = v0 + omega x (x - c), unless the points file gives v
+          Tensor<1, 3> r, omega_cross_r;
+          for (unsigned int d = 0; d < dim; ++d)
+            r[d] = x[d] - centre[d];
+          omega_cross_r = cross_product_3d(body.angular_velocity, r);
+          for (unsigned int d = 0; d < dim; ++d)
+            properties[layout.velocity + d] =
+              velocity ? (*velocity)[d] : body.velocity[d] + omega_cross_r[d];
+          for (unsigned int d = 0; d < dim; ++d)
+            properties[layout.deformation + d * dim + d] = 1.;
+          if (body.lithostatic_stress)
+            {
+              // p = rho g . (x - x_top) >= 0, sigma = -p I
+              const double pressure =
+                material.density() * (gravity * (x - top));
+              for (unsigned int d = 0; d < 3; ++d)
+                properties[layout.stress + d] = -pressure;
+            }
+          if (layout.initial_position_stored)
+            for (unsigned int d = 0; d < dim; ++d)
+              properties[layout.initial_position() + d] = x[d];
+          particle_handler.insert_particle(x, reference, next_id++, cell,
+                                            make_array_view(properties));
+        };
+
+        if (body.shape == BodyParameters<dim>::Shape::points)
+          {
+            // each point in the one owned cell holding it (cells half open,
+            // closed at the grid's upper bounds); points sorted by x to
+            // find a cell's in a slab
+            const auto &cloud = body.cloud;
+            std::vector<unsigned int> order(cloud.positions.size());
+            std::iota(order.begin(), order.end(), 0u);
+            std::sort(order.begin(), order.end(), [&](const unsigned int i, const unsigned int j) {
+              return cloud.positions[i][0] < cloud.positions[j][0];
+            });
+            owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
+              const Point<dim> &lower = strip_cell.lower;
+              const Point<dim> &upper = strip_cell.upper;
+              const auto inside = [&](const Point<dim> &x) {
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (x[d] < lower[d] || x[d] > upper[d] ||
+                      (x[d] == upper[d] && upper[d] < grid_upper[d]))
+                    return false;
+                return true;
+              };
+              auto i = std::lower_bound(order.begin(), order.end(), lower[0],
+                                        [&](const unsigned int p, const double value) {
+                                          return cloud.positions[p][0] < value;
+                                        });
+              for (; i != order.end() && cloud.positions[*i][0] <= upper[0]; ++i)
+                {
+                  const Point<dim> &x = cloud.positions[*i];
+                  if (!inside(x))
+                    continue;
+                  Point<dim> reference;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    reference[d] = (x[d] - lower[d]) / (upper[d] - lower[d]);
+                  add_point(strip_cell.cell, x, reference, cloud.volumes[*i],
+                            cloud.velocities.empty() ? nullptr : &cloud.velocities[*i]);
+                }
+            });
+            continue;
+          }
+
         owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
-            const auto &     cell  = strip_cell.cell;
             const Point<dim> lower = strip_cell.lower;
             const Point<dim> upper = strip_cell.upper;
-            const double sub_volume = cell->measure() / n_sub;
+            const double sub_volume = strip_cell.cell->measure() / n_sub;
             for (unsigned int i = 0; i < n_sub; ++i)
               {
                 const Point<dim> reference = seeding_point<dim>(i, k);
                 Point<dim>       x;
                 for (unsigned int d = 0; d < dim; ++d)
                   x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
-                if (!body.contains(x))
-                  continue;
-                std::fill(properties.begin(), properties.end(), 0.);
-                properties[layout.mass]           = material.density() * sub_volume;
-                properties[layout.initial_volume] = sub_volume;
-                properties[layout.body]           = b;
-                // v = v0 + omega x (x - c)
-                Tensor<1, 3> r, omega_cross_r;
-                for (unsigned int d = 0; d < dim; ++d)
-                  r[d] = x[d] - centre[d];
-                omega_cross_r = cross_product_3d(body.angular_velocity, r);
-                for (unsigned int d = 0; d < dim; ++d)
-                  properties[layout.velocity + d] = body.velocity[d] + omega_cross_r[d];
-                for (unsigned int d = 0; d < dim; ++d)
-                  properties[layout.deformation + d * dim + d] = 1.;
-                if (body.lithostatic_stress)
-                  {
-                    // p = rho g . (x - x_top) >= 0, sigma = -p I
-                    const double pressure =
-                      material.density() * (gravity * (x - top));
-                    for (unsigned int d = 0; d < 3; ++d)
-                      properties[layout.stress + d] = -pressure;
-                  }
-                particle_handler.insert_particle(x, reference, next_id++, cell,
-                                                  make_array_view(properties));
+                if (body.contains(x))
+                  add_point(strip_cell.cell, x, reference, sub_volume, nullptr);
               }
           });
       }

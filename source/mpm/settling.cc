@@ -87,6 +87,10 @@ namespace sable::mpm
         Tensor<1, dim>     v;
         for (unsigned int d = 0; d < dim; ++d)
           props[layout.velocity + d] = v[d] = body.velocity[d] + spin[d];
+        // displacements count from time 0, the settled state
+        if (layout.initial_position_stored)
+          for (unsigned int d = 0; d < dim; ++d)
+            props[layout.initial_position() + d] = particle.get_location()[d];
         max_speed = std::max(max_speed, body_wave_speed[b] + v.norm());
       }
     publish_velocities();

@@ -2,13 +2,13 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
-#include <deal.II/particles/data_out.h>
 
 #include <sable/base/checkpoint_directory.h>
 #include <sable/base/input_error.h>
 #include <sable/base/write_check.h>
 #include <sable/mpm/postprocess/contact_node_output.h>
 #include <sable/mpm/postprocess/grid_output.h>
+#include <sable/mpm/postprocess/particle_output.h>
 #include <sable/mpm/seeding.h>
 #include <sable/mpm/simulator.h>
 #include <sable/mpm/stress_update.h>
@@ -99,6 +99,7 @@ namespace sable::mpm
         body_wave_speed.push_back(materials.back()->wave_speed());
         layout.n_history = std::max(layout.n_history, materials.back()->n_history());
       }
+    layout.initial_position_stored = parameters.displacement_output;
     if (parameters.contact.model != ContactParameters::Model::none &&
         parameters.bodies.size() > 1)
       {
@@ -652,17 +653,22 @@ namespace sable::mpm
                                    parameters.output_directory + "': " + problem);
       });
     }
-    Particles::DataOut<dim> data_out;
+    // deal.II's output holds floats: integers are exact up to 2^24
+    if (particle_handler->get_next_free_particle_index() > (1u << 24) && !id_precision_warned)
+      {
+        id_precision_warned = true;
+        pcout << "warning: the particle output writes ids as single-precision floats, "
+              << "exact only below 16777216; this run has ids up to "
+              << particle_handler->get_next_free_particle_index() - 1 << std::endl;
+      }
     std::vector<std::string> history_names;
     for (const auto &material : materials)
       if (material->n_history() == layout.n_history)
         history_names = material->history_names();
-    const std::vector<std::string> names = layout.names(history_names);
-    std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(names.size(), DataComponentInterpretation::component_is_scalar);
-    for (unsigned int d = 0; d < dim; ++d)
-      interpretation[layout.velocity + d] = DataComponentInterpretation::component_is_part_of_vector;
-    data_out.build_patches(*particle_handler, names, interpretation);
+    ParticleOutput<dim> data_out(layout,
+                                 history_names,
+                                 /*tensors=*/parameters.output_format == OutputFormat::vtu);
+    data_out.build_patches(*particle_handler);
     const unsigned int counter = state.output_counter++;
     particle_series.write(data_out,
                           particle_handler->n_locally_owned_particles() > 0,

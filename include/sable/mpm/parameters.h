@@ -83,6 +83,9 @@ namespace sable::mpm
     /// with the particle output, also the background grid with nodal mass
     /// and velocity and per-cell fields (GridOutput), in output_format
     bool         grid_output         = false;
+    /// keep each point's initial position and write the displacement with
+    /// the particle output (dim more properties per point)
+    bool         displacement_output = false;
     /// steps between CSV rows; 0 = with every particle output and
     /// progress line (Simulator::statistics_due())
     unsigned int statistics_interval = 0;
@@ -112,7 +115,8 @@ namespace sable::mpm
 
   /// Whether the entry @p name ("Subsection/Entry") may have another value
   /// when a run is resumed: the time limits and CFL number, the output
-  /// (besides its format), threads and load balancing. Materials, bodies,
+  /// (besides its format and whether the displacement is written: both
+  /// shape the checkpoint), threads and load balancing. Materials, bodies,
   /// the grid, boundaries, contact, refinement, gravity and the update
   /// scheme may not.
   bool

@@ -4,18 +4,17 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
-#include <string>
-#include <vector>
-
 namespace sable::mpm
 {
   /**
    * Where each quantity sits in a particle's property array. Offsets are
    * fixed once the bodies (and so the materials) are known; history slots
-   * exist only if some body's material needs them.
+   * exist only if some body's material needs them, the initial position
+   * only if the displacement is written (Output/Displacement output).
    *
    *   mass | initial volume | body | velocity (dim) | F (dim x dim, row-major)
    *   | stress (xx yy zz xy xz yz) | history (n_history)
+   *   | initial position (dim, if stored)
    */
   template <int dim>
   struct ParticleLayout
@@ -30,10 +29,20 @@ namespace sable::mpm
 
     unsigned int n_history = 0;
 
+    /// Whether each point keeps the position it was seeded at.
+    bool initial_position_stored = false;
+
+    /// Offset of the initial position (if stored).
+    unsigned int
+    initial_position() const
+    {
+      return history + n_history;
+    }
+
     unsigned int
     n_properties() const
     {
-      return history + n_history;
+      return history + n_history + (initial_position_stored ? dim : 0);
     }
 
     /// Index among the stress components (xx yy zz xy xz yz) of (i, j).
@@ -77,25 +86,6 @@ namespace sable::mpm
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           result[i][j] = volume * props[stress + stress_component(i, j)];
-      return result;
-    }
-
-    /// Output names; vector quantities repeat their name dim times.
-    std::vector<std::string>
-    names(const std::vector<std::string> &history_names) const
-    {
-      std::vector<std::string> result = {"mass", "initial_volume", "body"};
-      for (unsigned int d = 0; d < dim; ++d)
-        result.push_back("velocity");
-      const char *axes = "xyz";
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          result.push_back(std::string("F_") + axes[i] + axes[j]);
-      for (const char *s : {"xx", "yy", "zz", "xy", "xz", "yz"})
-        result.push_back(std::string("stress_") + s);
-      for (unsigned int h = 0; h < n_history; ++h)
-        result.push_back(h < history_names.size() ? history_names[h] :
-                                                    "history_" + std::to_string(h));
       return result;
     }
   };

@@ -17,7 +17,10 @@ namespace sable::mpm
    * Fill every body with material points (SPEC Part A, initial state):
    * k^dim points per cell at the seeding_point() positions of each locally
    * owned cell the body covers, with mass, volume, velocity v0 + omega x
-   * (x - c), F = I and, if asked, a lithostatic stress. Point ids are
+   * (x - c), F = I and, if asked, a lithostatic stress; a body of
+   * Shape = points gets one material point per point of its file, in the
+   * owned cell holding it (cells half open, closed at the grid's upper
+   * bounds, so that a point on a face is seeded once over all ranks). Point ids are
    * unique over all ranks: numbered body by body and cell by cell on each
    * rank, then offset by the points of the lower ranks.
    */

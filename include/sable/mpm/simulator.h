@@ -295,6 +295,9 @@ namespace sable::mpm
     fastest_point_location() const;
     /// Whether the drift warning was printed.
     bool drift_warned = false;
+    /// whether the console was told that ids beyond 2^24 are not exact in
+    /// the (single-precision) particle output
+    bool id_precision_warned = false;
     /// Stop all ranks if any flagged a problem at @p location.
     void
     report_failure(const bool         failed_here,

@@ -5,6 +5,8 @@
 #include <sable/mpm/bodies/body_parameters.h>
 #include <sable/mpm/parameter_tools.h>
 
+#include <filesystem>
+
 namespace sable::mpm
 {
   namespace
@@ -16,15 +18,55 @@ namespace sable::mpm
       using Shape = typename BodyParameters<dim>::Shape;
       static const NamedChoice<Shape> choice{{"disk", Shape::disk},
                                              {"sphere", Shape::disk},
-                                             {"box", Shape::box}};
+                                             {"box", Shape::box},
+                                             {"points", Shape::points}};
       return choice;
     }
   } // namespace
 
   template <int dim>
+  void
+  BodyParameters<dim>::read_points(const std::string &folder)
+  {
+    const std::filesystem::path path(points_file);
+    cloud = read_point_file<dim>(path.is_absolute() || folder.empty() ?
+                                   points_file :
+                                   (std::filesystem::path(folder) / path).string());
+  }
+
+  template <int dim>
+  Point<dim>
+  BodyParameters<dim>::centre() const
+  {
+    if (shape == Shape::disk)
+      return center;
+    if (shape == Shape::box)
+      return Point<dim>((Tensor<1, dim>(lower_corner) + Tensor<1, dim>(upper_corner)) / 2.);
+    Tensor<1, dim> sum;
+    double         volume = 0;
+    for (unsigned int i = 0; i < cloud.positions.size(); ++i)
+      {
+        sum += cloud.volumes[i] * Tensor<1, dim>(cloud.positions[i]);
+        volume += cloud.volumes[i];
+      }
+    return Point<dim>(volume > 0 ? sum / volume : sum);
+  }
+
+  template <int dim>
   std::pair<Point<dim>, Point<dim>>
   BodyParameters<dim>::bounding_box() const
   {
+    if (shape == Shape::points)
+      {
+        Point<dim> lo = cloud.positions.empty() ? Point<dim>() : cloud.positions[0], hi = lo;
+        for (const Point<dim> &x : cloud.positions)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lo[d] = std::min(lo[d], x[d]);
+              hi[d] = std::max(hi[d], x[d]);
+            }
+        return {lo, hi};
+      }
     if (shape == Shape::box)
       return {lower_corner, upper_corner};
     Point<dim> lo = center, hi = center;
@@ -40,6 +82,8 @@ namespace sable::mpm
   bool
   BodyParameters<dim>::contains(const Point<dim> &x) const
   {
+    if (shape == Shape::points)
+      return false;
     if (shape == Shape::disk)
       return (x - center).norm_square() <= radius * radius;
     for (unsigned int d = 0; d < dim; ++d)
@@ -52,6 +96,15 @@ namespace sable::mpm
   Point<dim>
   BodyParameters<dim>::top_point(const Tensor<1, dim> &gravity) const
   {
+    if (shape == Shape::points)
+      {
+        // the point highest against gravity
+        Point<dim> top = cloud.positions.empty() ? Point<dim>() : cloud.positions[0];
+        for (const Point<dim> &x : cloud.positions)
+          if (gravity * (x - top) < 0)
+            top = x;
+        return top;
+      }
     if (shape == Shape::disk)
       {
         const double g = gravity.norm();
@@ -68,7 +121,20 @@ namespace sable::mpm
   BodyParameters<dim>::declare_parameters(ParameterHandler &prm)
   {
     const std::string zero = zero_vector(dim);
-    prm.declare_entry("Shape", "disk", shapes<dim>().pattern(), "disk (2D) or sphere (3D), or box.");
+    prm.declare_entry("Shape",
+                      "disk",
+                      shapes<dim>().pattern(),
+                      "disk (2D) or sphere (3D), box, or points (one material "
+                      "point per row of 'Points file').");
+    prm.declare_entry("Points file",
+                      "",
+                      Patterns::Anything(),
+                      "Shape = points: a CSV file with a header naming its "
+                      "columns x, y (, z in 3D), volume (m^dim) and optionally "
+                      "vx, vy (, vz) (m/s, else 'Velocity' and 'Angular "
+                      "velocity' about the volume-weighted centroid), then one "
+                      "row per material point, its mass density times volume. "
+                      "A relative path is read from the parameter file's folder.");
     prm.declare_entry("Center", zero, Patterns::List(Patterns::Double(), dim, dim), "Disk/sphere centre, m.");
     prm.declare_entry("Radius", "0", Patterns::Double(), "Disk/sphere radius, m, > 0.");
     prm.declare_entry("Lower corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box lower corner, m.");
@@ -115,6 +181,7 @@ namespace sable::mpm
     lower_corner = Point<dim>(read_vector<dim>(prm, "Lower corner", path));
     upper_corner = Point<dim>(read_vector<dim>(prm, "Upper corner", path));
     particles_per_direction = prm.get_integer("Particles per cell direction");
+    points_file             = prm.get("Points file");
     material.parse_parameters(prm, path);
     velocity = read_vector<dim>(prm, "Velocity", path);
     const std::vector<double> omega =
@@ -135,6 +202,11 @@ namespace sable::mpm
   {
     if (shape == Shape::disk)
       check_input(radius > 0, path + "Radius", radius, "a number > 0 (m)");
+    else if (shape == Shape::points)
+      check_input(!cloud.positions.empty(),
+                  path + "Points file",
+                  points_file,
+                  "a file of material points (Shape = points)");
     else
       for (unsigned int d = 0; d < dim; ++d)
         check_input(upper_corner[d] > lower_corner[d],

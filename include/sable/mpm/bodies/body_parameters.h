@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <sable/mpm/bodies/point_file.h>
 #include <sable/mpm/materials/material_parameters.h>
 
 #include <string>
@@ -22,7 +23,8 @@ namespace sable::mpm
     enum class Shape
     {
       disk, ///< a disk in 2D, a sphere in 3D
-      box
+      box,
+      points ///< material points read from 'Points file'
     };
     Shape        shape  = Shape::disk;
     Point<dim>   center = {};
@@ -30,6 +32,9 @@ namespace sable::mpm
     Point<dim>   lower_corner = {};
     Point<dim>   upper_corner = {};
     unsigned int particles_per_direction = 2;
+    /// Shape = points: the file (as given, and as found) and its points
+    std::string     points_file;
+    PointCloud<dim> cloud;
 
     MaterialParameters material;
 
@@ -44,9 +49,20 @@ namespace sable::mpm
     /// 'body surface').
     bool refine_surface = true;
 
+    /// Shape = points: read the points file, found relative to @p folder
+    /// (that of the parameter file) unless its path is absolute.
+    void
+    read_points(const std::string &folder);
+
+    /// Centre of rotation of 'Angular velocity': the disk's or box's
+    /// centre, the volume-weighted centroid of points.
+    Point<dim>
+    centre() const;
+
     /// Axis-aligned bounding box of the shape.
     std::pair<Point<dim>, Point<dim>>
     bounding_box() const;
+    /// Whether @p x is inside a disk or box (never for points).
     bool
     contains(const Point<dim> &x) const;
     /// The point of the shape lowest in the potential −g·x (where p = 0).
