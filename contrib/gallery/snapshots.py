@@ -2,7 +2,7 @@
 """Snapshots of a 2D MPM run: the material points at chosen times, coloured
 by their speed, and the energies of statistics.csv over time.
 
-Usage: contrib/tutorial/snapshots.py OUTPUT_DIR [--times 0,0.15,0.3,0.6]
+Usage: contrib/gallery/snapshots.py OUTPUT_DIR [--times 0,0.15,0.3,0.6]
            [--png FILE]
 OUTPUT_DIR is a run's output directory (particles.pvd, statistics.csv); the
 picture goes to FILE (default: OUTPUT_DIR/snapshots.png). For each time the
@@ -68,7 +68,7 @@ def main():
     grid = figure.add_gridspec(2, len(chosen), height_ratios=[1.2, 1], hspace=0.05)
     for column, ((time, _), (positions, speeds)) in enumerate(zip(chosen, data)):
         axes = figure.add_subplot(grid[0, column])
-        shown = axes.scatter(positions[:, 0], positions[:, 1], c=speeds, s=0.6, vmin=0, vmax=top,
+        shown = axes.scatter(positions[:, 0], positions[:, 1], c=speeds, s=max(0.6, 2500 / len(speeds)), vmin=0, vmax=top,
                              cmap="viridis", linewidths=0)
         axes.set_xlim(lower[0] - 0.05, upper[0] + 0.05)
         axes.set_ylim(lower[1] - 0.05, upper[1] + 0.05)
