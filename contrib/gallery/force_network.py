@@ -33,6 +33,10 @@ def main():
     parser.add_argument("state")
     parser.add_argument("--png", default=None)
     args = parser.parse_args()
+    for name in ("grains.csv", "contacts.csv"):
+        if not os.path.exists(os.path.join(args.state, name)):
+            sys.exit(f"force_network.py: {args.state} has no {name}: not a QuSGM state directory "
+                     "(final_state/ or prepared_state/ of a run's output)")
     grains = {int(g["id"]): np.array([float(g[c]) for c in "xyz"]) * 1e3 for g in read(os.path.join(args.state, "grains.csv"))}
     contacts = [(int(c["i"]), int(c["j"]), float(c["normal_force"]))
                 for c in read(os.path.join(args.state, "contacts.csv"))]

@@ -54,6 +54,10 @@ def main():
     parser.add_argument("--times", default="0,0.15,0.3,0.6")
     parser.add_argument("--png", default=None)
     args = parser.parse_args()
+    for name in ("particles.pvd", "statistics.csv"):
+        if not os.path.exists(os.path.join(args.directory, name)):
+            sys.exit(f"snapshots.py: {args.directory} has no {name}: not the output directory of an MPM run "
+                     "with particle output ('Output/Particle output interval')")
     files = particle_files(args.directory)
     if not files:
         sys.exit(f"snapshots.py: {args.directory}/particles.pvd lists no particle files")
