@@ -224,21 +224,11 @@ namespace sable::mpm
         const double norm = begin[a].mass_gradient.norm();
         normal[a] = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
       }
-    // weights of the bodies' directions when they are made collinear
-    const auto weight = [&](const unsigned int a) {
-      return parameters.normals == ContactParameters::Normals::average ? 1. : begin[a].mass;
-    };
     if (n == 2)
       {
-        Tensor<1, dim> common = weight(0) * normal[0] - weight(1) * normal[1];
-        // the normal of the body with more mass at the node, whose surface
-        // the node resolves better: a flat plane's, not a block corner's
-        if (parameters.normals == ContactParameters::Normals::largest_mass)
-          common = begin[0].mass >= begin[1].mass ? normal[0] : Tensor<1, dim>(-normal[1]);
-        const double   norm   = common.norm();
-        if (norm == 0)
+        const Tensor<1, dim> common = pair_normal(begin[0], begin[1], normal[0], normal[1]);
+        if (common.norm_square() == 0)
           return;
-        common /= norm;
         normal[0] = common;
         normal[1] = -common;
       }
@@ -403,6 +393,26 @@ namespace sable::mpm
   }
 
   template <int dim>
+  Tensor<1, dim>
+  BardenhagenContact<dim>::pair_normal(const typename BodyFields<dim>::Record &a,
+                                       const typename BodyFields<dim>::Record &b,
+                                       const Tensor<1, dim> &                  normal_a,
+                                       const Tensor<1, dim> &                  normal_b) const
+  {
+    Tensor<1, dim> common;
+    if (parameters.normals == ContactParameters::Normals::largest_mass)
+      // the normal of the body with more mass at the node, whose surface
+      // the node resolves better: a flat plane's, not a block corner's
+      common = a.mass >= b.mass ? normal_a : Tensor<1, dim>(-normal_b);
+    else if (parameters.normals == ContactParameters::Normals::average)
+      common = normal_a - normal_b;
+    else
+      common = a.mass * normal_a - b.mass * normal_b;
+    const double norm = common.norm();
+    return norm > 0 ? Tensor<1, dim>(common / norm) : Tensor<1, dim>();
+  }
+
+  template <int dim>
   bool
   BardenhagenContact<dim>::surfaces_meet(const typename BodyFields<dim>::Record &a,
                                          const typename BodyFields<dim>::Record &b,
@@ -481,16 +491,9 @@ namespace sable::mpm
           const Record &ra = begin[a], &rb = begin[b];
           if (ra.mass <= 0 || rb.mass <= 0)
             continue;
-          const auto weight = [&](const Record &r) {
-            return parameters.normals == ContactParameters::Normals::average ? 1. : r.mass;
-          };
-          Tensor<1, dim> common = weight(ra) * normal[a] - weight(rb) * normal[b];
-          if (parameters.normals == ContactParameters::Normals::largest_mass)
-            common = ra.mass >= rb.mass ? normal[a] : Tensor<1, dim>(-normal[b]);
-          const double norm = common.norm();
-          if (norm == 0)
+          const Tensor<1, dim> common = pair_normal(ra, rb, normal[a], normal[b]);
+          if (common.norm_square() == 0)
             continue;
-          common /= norm;
           const double         pair_mass = ra.mass + rb.mass;
           const Tensor<1, dim> dv = (rb.mass / pair_mass) * (velocity[a] - velocity[b]);
           const double         dv_n = dv * common;

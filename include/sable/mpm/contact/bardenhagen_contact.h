@@ -143,6 +143,15 @@ namespace sable::mpm
                            Scratch &                         scratch,
                            ChunkSums &                       sums) const;
 
+    /// The common unit normal (out of @p a) of two bodies at a node, from
+    /// their unit mass-gradient directions @p normal_a and @p normal_b, as
+    /// 'Contact/Normals' says; zero where the directions cancel.
+    Tensor<1, dim>
+    pair_normal(const typename BodyFields<dim>::Record &a,
+                const typename BodyFields<dim>::Record &b,
+                const Tensor<1, dim> &                  normal_a,
+                const Tensor<1, dim> &                  normal_b) const;
+
     /// With 'Detection = surface position': whether the surfaces of the
     /// bodies of @p a and @p b, closing at @p closing along @p normal (out
     /// of a), meet within the step.
