@@ -15,6 +15,7 @@ build="${1:-$root/build}"
 steps="${2:-20}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
+source "$root/contrib/benchmarks/callgrind_functions.sh"
 
 scene() { # contact entries
   cat <<PRM
@@ -62,13 +63,11 @@ for variant in "${variants[@]}"; do
   name="${variant%%|*}"
   scene "${variant#*|}" > "$work/scene.prm"
   rm -rf "$work/out"
-  DEAL_II_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$work/callgrind.out" \
-    "$build/sable" "$work/scene.prm" > "$work/log" 2>&1 ||
+  callgrind_run "$work/callgrind.out" "$work/log" "$build/sable" "$work/scene.prm" ||
     { echo "$name: $(grep -m1 'sable:' "$work/log")"; continue; }
-  callgrind_annotate --inclusive=yes --threshold=100 "$work/callgrind.out" > "$work/annotated" 2> /dev/null
-  advance=$(grep -E '^ *[0-9,]+ ' "$work/annotated" | grep -F -m1 "Simulator<2>::advance() [" | awk '{print $1}' | tr -d , || true)
+  advance=$(callgrind_count "$work/callgrind.out" "Simulator<2>::advance() [")
   if [ "$reference" -eq 0 ]; then reference=$advance; fi
-  points=$(grep -o '[0-9]* material points' "$work/log" | cut -d' ' -f1)
+  points=$(material_points "$work/log")
   echo "$name: $points points, $steps steps: advance $advance instructions," \
     "$(( advance / (points * steps) )) per particle-step, $(awk -v a="$advance" -v r="$reference" 'BEGIN { printf "%.3f", a / r }') x the defaults"
 done

@@ -23,6 +23,7 @@ build="${1:-$root/build}"
 steps="${2:-20}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
+source "$root/contrib/benchmarks/callgrind_functions.sh"
 
 scene() { # name grid-upper-corner cells body-upper-corner gravity walls body-entry
   cat <<PRM
@@ -105,17 +106,14 @@ for run in box:1 box:0 floor:1 floor:0 grains:0; do
   name=${run%:*} interval=${run#*:}
   sed -i "s/Statistics interval = .*/Statistics interval = $interval/" "$work/$name.prm"
   rm -rf "$work/out_$name" # sable refuses to write over an earlier run's results
-  DEAL_II_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$work/$name.out" \
-    "$build/sable" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
+  callgrind_run "$work/$name.out" "$work/$name.log" "$build/sable" "$work/$name.prm" ||
     { echo "$name, statistics interval $interval: $(grep -m1 'sable:' "$work/$name.log")"; continue; }
-  callgrind_annotate --inclusive=yes --threshold=100 "$work/$name.out" > "$work/$name.txt" 2> /dev/null
-  count() { grep -E '^ *[0-9,]+ ' "$work/$name.txt" | grep -F -m1 "$1" | awk '{print $1}' | tr -d , || true; }
   total=$(grep -o "summary: [0-9]*" "$work/$name.out" | awk '{print $2}')
-  advance=$(count "Simulator<2>::advance() [")
-  statistics=$(count "Simulator<2>::compute_statistics() const [")
-  sort=$(count "sort_particles_into_subdomains_and_cells() [")
-  contact=$(count "MultiBodyContact<2>::mark_contact_nodes(")
-  particles=$(grep -o '[0-9]* material points' "$work/$name.log" | cut -d' ' -f1)
+  advance=$(callgrind_count "$work/$name.out" "Simulator<2>::advance() [")
+  statistics=$(callgrind_count "$work/$name.out" "Simulator<2>::compute_statistics() const [")
+  sort=$(callgrind_count "$work/$name.out" "sort_particles_into_subdomains_and_cells() [")
+  contact=$(callgrind_count "$work/$name.out" "MultiBodyContact<2>::mark_contact_nodes(")
+  particles=$(material_points "$work/$name.log")
   echo "$name, statistics interval $interval: $particles points, $steps steps: total $total," \
     "advance ${advance:-0}, statistics ${statistics:-0}, deal.II sort ${sort:-0}," \
     "contact nodes ${contact:-0} instructions;" \
