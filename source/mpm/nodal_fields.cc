@@ -10,13 +10,19 @@ namespace sable::mpm
 {
   template <int dim>
   void
-  NodalFields<dim>::reinit(const Grid<dim> &grid, const bool with_material_extent)
+  NodalFields<dim>::reinit(const Grid<dim> &grid,
+                           const bool       with_material_extent,
+                           const bool       with_mass_moment)
   {
     scattered.reinit(grid.make_partitioner(n_components));
     if (with_material_extent)
       material_extent.reinit(grid.make_partitioner(2 * dim));
     else
       material_extent.reinit(0);
+    if (with_mass_moment)
+      mass_moment.reinit(grid.make_partitioner(dim));
+    else
+      mass_moment.reinit(0);
     mass.assign(grid.n_relevant_nodes(), 0.);
     old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
     new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
@@ -40,6 +46,11 @@ namespace sable::mpm
                     partitioner.n_ghost_indices(),
                   std::numeric_limits<double>::max());
       }
+    if (pass == GridPass::momentum_update && mass_moment.size() > 0)
+      {
+        mass_moment = 0.;
+        mass_moment.zero_out_ghost_values();
+      }
   }
 
   template <int dim>
@@ -53,6 +64,11 @@ namespace sable::mpm
       {
         material_extent.compress(VectorOperation::min);
         material_extent.update_ghost_values();
+      }
+    if (pass == GridPass::momentum_update && mass_moment.size() > 0)
+      {
+        mass_moment.compress(VectorOperation::add);
+        mass_moment.update_ghost_values();
       }
   }
 
@@ -101,6 +117,8 @@ namespace sable::mpm
       {
         if (material_extent.size() > 0)
           boundary_conditions.set_material_extent(material_extent.get_values(), time_step);
+        if (mass_moment.size() > 0)
+          boundary_conditions.set_mass_moment(mass_moment.get_values(), time_step);
         return boundary_conditions.apply(new_velocity, mass, n_owned_nodes());
       }
   }

@@ -19,6 +19,7 @@ namespace sable::mpm
     fields.template zero<pass>();
     double *const grid_values = fields.scattered_values();
     double *const extent      = momentum_update ? fields.material_extent_values() : nullptr;
+    double *const moment      = momentum_update ? fields.mass_moment_values() : nullptr;
 
     // the single-field assembler: one point's share of mass, momentum,
     // internal force -V sigma . grad N and material extent
@@ -41,6 +42,13 @@ namespace sable::mpm
                 e[0]            = std::min(e[0], x[d] - half);
                 e[1]            = std::min(e[1], -(x[d] + half));
               }
+        }
+      if (moment != nullptr)
+        {
+          const Point<dim> x = particle.get_location();
+          for (unsigned int v = 0; v < shape.n_nodes; ++v)
+            for (unsigned int d = 0; d < dim; ++d)
+              moment[shape.nodes[v] * dim + d] += mass * shape.values[v] * x[d];
         }
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {

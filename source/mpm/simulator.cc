@@ -10,6 +10,7 @@
 #include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/postprocess/particle_output.h>
 #include <sable/mpm/seeding.h>
+#include <sable/mpm/surface_offset.h>
 #include <sable/mpm/simulator.h>
 #include <sable/mpm/stress_update.h>
 
@@ -100,6 +101,10 @@ namespace sable::mpm
         layout.n_history = std::max(layout.n_history, materials.back()->n_history());
       }
     layout.initial_position_stored = parameters.displacement_output;
+    double surface_offset          = 0;
+    for (const auto &body : parameters.bodies)
+      surface_offset = std::max(surface_offset, surface_centroid_offset(body.particles_per_direction));
+    boundary_conditions.set_surface_offset(surface_offset);
     if (parameters.contact.model != ContactParameters::Model::none &&
         parameters.bodies.size() > 1)
       {
@@ -282,7 +287,9 @@ namespace sable::mpm
   void
   Simulator<dim>::allocate_nodal_data()
   {
-    nodal_fields.reinit(grid, boundary_conditions.needs_material_extent());
+    nodal_fields.reinit(grid,
+                        boundary_conditions.needs_material_extent(),
+                        boundary_conditions.needs_mass_moment());
     // ghost cells scatter only to the per-body fields (contact under MPI)
     particle_to_grid.reinit(grid, contact && parallel);
   }

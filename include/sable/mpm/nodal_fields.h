@@ -29,9 +29,11 @@ namespace sable::mpm
 
     /// Size every field for @p grid's nodes; with @p with_material_extent
     /// also the material extent a friction wall with material contact
-    /// reads (BoundaryConditions::set_material_extent()).
+    /// reads (BoundaryConditions::set_material_extent()), with
+    /// @p with_mass_moment the mass moments sum_p N_i m_p x_p a friction
+    /// wall with surface-position contact reads.
     void
-    reinit(const Grid<dim> &grid, const bool with_material_extent);
+    reinit(const Grid<dim> &grid, const bool with_material_extent, const bool with_mass_moment);
 
     /// Zero what a particle-to-grid pass adds to (the extent: to +max).
     template <GridPass pass>
@@ -85,6 +87,14 @@ namespace sable::mpm
       return material_extent.size() > 0 ? material_extent.get_values() : nullptr;
     }
 
+    /// dim values per relevant node, sum_p N_i(x_p) m_p x_p, or nullptr
+    /// without friction walls that check the surface position.
+    double *
+    mass_moment_values()
+    {
+      return mass_moment.size() > 0 ? mass_moment.get_values() : nullptr;
+    }
+
     const std::vector<double> &
     get_mass() const
     {
@@ -104,6 +114,7 @@ namespace sable::mpm
   private:
     NodalVector         scattered;
     NodalVector         material_extent;
+    NodalVector         mass_moment;
     std::vector<double> mass;
     std::vector<double> old_velocity;
     std::vector<double> new_velocity;

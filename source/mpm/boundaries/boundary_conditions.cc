@@ -38,7 +38,8 @@ namespace sable::mpm
                                        f / 2,
                                        f % 2 == 1 ? 1. : -1.,
                                        it->first,
-                                       cell->face(f)->center()[f / 2]});
+                                       cell->face(f)->center()[f / 2],
+                                       cell->extent_in_direction(f / 2)});
             }
     // each (node, wall) once, in the order of boundary ids so that corner
     // nodes see their walls in a fixed order on every rank
@@ -48,6 +49,13 @@ namespace sable::mpm
     std::sort(constraints.begin(),
               constraints.end(),
               [&](const auto &a, const auto &b) { return key(a) < key(b); });
+    // a node between wall cells of two sizes (adaptive grids) takes the
+    // larger: its shape function reaches that far into the material, and
+    // the larger offset lets the wall act early rather than late
+    for (unsigned int i = constraints.size(); i-- > 1;)
+      if (key(constraints[i - 1]) == key(constraints[i]))
+        constraints[i - 1].cell_size =
+          std::max(constraints[i - 1].cell_size, constraints[i].cell_size);
     constraints.erase(std::unique(constraints.begin(),
                                   constraints.end(),
                                   [&](const auto &a, const auto &b) {
@@ -158,18 +166,10 @@ namespace sable::mpm
         if (wall.type == BoundaryType::moving && c.node < n_owned_nodes)
           for (unsigned int d = 0; d < dim; ++d)
             work += mass[c.node] * (wall.velocity[d] - v[d]) * wall.velocity[d];
-        if (wall.type == BoundaryType::friction && wall.material_contact)
+        if (wall.type == BoundaryType::friction && out_of_reach_of(c, v, mass[c.node]))
           {
-            Assert(material_extent != nullptr, ExcInternalError());
-            // distance from the wall to the nearest material around the
-            // node, and how far the node moves toward the wall in this step
-            const double *extent = material_extent + c.node * 2 * dim + 2 * c.direction;
-            const double  gap = c.sign < 0. ? extent[0] - c.position : c.position + extent[1];
-            if (gap - extent_time_step * c.sign * v[c.direction] > 0.)
-              {
-                out_of_reach[i] = true;
-                continue;
-              }
+            out_of_reach[i] = true;
+            continue;
           }
         in_contact[i] = apply_one_counting(c, v, mass[c.node], last_heat[i]);
         if (c.node < n_owned_nodes)
@@ -180,12 +180,76 @@ namespace sable::mpm
 
   template <int dim>
   bool
+  BoundaryConditions<dim>::out_of_reach_of(const NodeConstraint &c,
+                                           const double *        v,
+                                           const double          mass) const
+  {
+    const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
+    // how far the node moves toward the wall in this step
+    const double approach = extent_time_step * c.sign * v[c.direction];
+    switch (wall.wall_contact)
+      {
+        case WallContact::approach:
+          return false;
+        case WallContact::material:
+          {
+            Assert(material_extent != nullptr, ExcInternalError());
+            // distance from the wall to the nearest material around the node
+            const double *extent = material_extent + c.node * 2 * dim + 2 * c.direction;
+            const double  gap = c.sign < 0. ? extent[0] - c.position : c.position + extent[1];
+            return gap - approach > 0.;
+          }
+        case WallContact::surface_position:
+          {
+            Assert(mass_moment != nullptr, ExcInternalError());
+            // the body's surface lies surface_offset cells outside the
+            // node's mass centroid: on a flat surface at the wall exactly;
+            // on a round body rolling on the wall only at the node nearest
+            // its contact (a node a cell ahead sees the surface about a
+            // fifteenth of a cell up at eight cells per radius)
+            const double centroid = mass_moment[c.node * dim + c.direction] / mass;
+            const double gap      = c.sign * (c.position - centroid) -
+                               (surface_offset + touching_tolerance) * c.cell_size;
+            return gap - approach > 0.;
+          }
+      }
+    return false;
+  }
+
+  template <int dim>
+  bool
   BoundaryConditions<dim>::needs_material_extent() const
   {
     for (const auto &[id, wall] : parameters)
-      if (wall.type == BoundaryType::friction && wall.material_contact)
+      if (wall.type == BoundaryType::friction && wall.wall_contact == WallContact::material)
         return true;
     return false;
+  }
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::needs_mass_moment() const
+  {
+    for (const auto &[id, wall] : parameters)
+      if (wall.type == BoundaryType::friction &&
+          wall.wall_contact == WallContact::surface_position)
+        return true;
+    return false;
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::set_mass_moment(const double *moment, const double time_step)
+  {
+    mass_moment      = moment;
+    extent_time_step = time_step;
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::set_surface_offset(const double offset)
+  {
+    surface_offset = offset;
   }
 
   template <int dim>

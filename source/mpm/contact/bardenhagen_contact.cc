@@ -1,6 +1,7 @@
 #include <deal.II/base/parallel.h>
 
 #include <sable/mpm/contact/bardenhagen_contact.h>
+#include <sable/mpm/surface_offset.h>
 #include <sable/mpm/contact/coulomb.h>
 
 #include <algorithm>
@@ -19,21 +20,9 @@ namespace sable::mpm
     , body_groups(body_groups)
     , use_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
   {
-    // k points per cell direction at (j + 1/2)/k of the cell below the
-    // surface node, weighted by the hat function 1 - y: the centroid lies
-    // sum w y / sum w cells inside the surface
     for (unsigned int b = 0; b < body_groups.size(); ++b)
-      {
-        const unsigned int k = b < particles_per_direction.size() ? particles_per_direction[b] : 2;
-        double             weighted = 0, weights = 0;
-        for (unsigned int j = 0; j < k; ++j)
-          {
-            const double y = (j + 0.5) / k;
-            weighted += (1 - y) * y;
-            weights += 1 - y;
-          }
-        surface_offset.push_back(weighted / weights);
-      }
+      surface_offset.push_back(surface_centroid_offset(
+        b < particles_per_direction.size() ? particles_per_direction[b] : 2));
     const unsigned int n = body_groups.size();
     pair_forces.assign(parameters.reported_pairs.size(), Tensor<1, dim>());
     // a dense table is fine for the few bodies whose pairs are reported;

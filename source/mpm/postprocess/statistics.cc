@@ -88,7 +88,7 @@ namespace sable::mpm
     std::string error = failure;
     if (file && error.empty())
       {
-        const Row row{step, time, dt, boundary_work, s};
+        const Row row{static_cast<double>(step), time, dt, boundary_work, s};
         for (unsigned int c = 0; c < columns.size(); ++c)
           *file << (c ? "," : "") << columns[c].value(row);
         *file << '\n';

@@ -58,6 +58,25 @@ namespace sable::mpm
     void
     set_material_extent(const double *extent, const double time_step);
 
+    bool
+    needs_mass_moment() const;
+
+    /**
+     * The mass moments sum_p N_i(x_p) m_p x_p (dim values per relevant
+     * node). A friction wall with surface-position contact acts at a node
+     * only where the body's surface, taken @p surface_offset cells (see
+     * surface_centroid_offset()) outside the node's mass centroid, is within
+     * a hundredth of a cell of the wall after the step's approach. The
+     * pointer must stay valid until apply().
+     */
+    void
+    set_mass_moment(const double *moment, const double time_step);
+
+    /// The centroid offset of the bodies' surfaces in cells (the largest
+    /// over the bodies, so that no body reaches the wall unseen).
+    void
+    set_surface_offset(const double offset);
+
     /**
      * Apply the conditions to velocities remapped from the particles (MUSL's
      * second grid pass). A friction wall holds exactly the nodes it held
@@ -107,7 +126,13 @@ namespace sable::mpm
       double        sign;      ///< +1: normal along +axis, -1: along -axis
       types::boundary_id id;
       double             position; ///< wall coordinate along the normal axis
+      double             cell_size; ///< the wall cells' extent along the normal
     };
+
+    /// Whether the material around the node stays clear of a friction wall
+    /// in this step, by the wall's contact criterion.
+    bool
+    out_of_reach_of(const NodeConstraint &c, const double *v, const double mass) const;
 
     /// Apply constraint @p c to the velocity @p v. For friction walls,
     /// returns the fraction of the tangential velocity removed (1: stick),
@@ -137,7 +162,12 @@ namespace sable::mpm
     /// per constraint: what it added to frictional_heat in the last apply()
     std::vector<double> last_heat;
     const double *    material_extent = nullptr;
+    const double *    mass_moment      = nullptr;
     double            extent_time_step = 0.;
+    double            surface_offset   = 0.5;
+    /// surfaces closer to a wall than this, in cells, touch it (as between
+    /// bodies, BardenhagenContact::touching_tolerance)
+    static constexpr double touching_tolerance = 0.01;
   };
 } // namespace sable::mpm
 

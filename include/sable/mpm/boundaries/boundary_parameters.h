@@ -22,6 +22,15 @@ namespace sable::mpm
 
   /// The condition on the grid faces of one boundary id (subsection
   /// 'Boundary conditions').
+  /// When a friction wall acts at a wall node (Boundary conditions/Friction
+  /// wall contact).
+  enum class WallContact
+  {
+    approach,        ///< whenever the node approaches the wall
+    material,        ///< and the nearest point's edge reaches the wall in the step
+    surface_position ///< and the body's surface, from the node's mass centroid, does
+  };
+
   template <int dim>
   struct BoundaryParameters
   {
@@ -30,10 +39,9 @@ namespace sable::mpm
     BoundaryType   type     = BoundaryType::free;
     double         friction = 0.;
     Tensor<1, dim> velocity = {};
-    /// Friction walls only: act only where the material points reach the wall
-    /// within the step (Boundary conditions/Friction wall contact =
-    /// material), not wherever a node with mass approaches it.
-    bool material_contact = true;
+    /// Friction walls only: where the wall acts (Boundary conditions/
+    /// Friction wall contact).
+    WallContact wall_contact = WallContact::material;
 
     /// Declare the entries of the current subsection.
     static void
