@@ -20,7 +20,7 @@ namespace sable::mpm
     else
       material_extent.reinit(0);
     if (with_mass_moment)
-      mass_moment.reinit(grid.make_partitioner(dim));
+      mass_moment.reinit(grid.make_partitioner(dim + 1));
     else
       mass_moment.reinit(0);
     mass.assign(grid.n_relevant_nodes(), 0.);

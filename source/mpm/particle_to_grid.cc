@@ -46,9 +46,18 @@ namespace sable::mpm
       if (moment != nullptr)
         {
           const Point<dim> x = particle.get_location();
+          // the spacing the point was seeded at: on an adapted grid a cell
+          // may hold points seeded on a coarser or finer one
+          const double spacing = dim == 2 ? std::sqrt(props[Layout::initial_volume]) :
+                                            std::cbrt(props[Layout::initial_volume]);
           for (unsigned int v = 0; v < shape.n_nodes; ++v)
-            for (unsigned int d = 0; d < dim; ++d)
-              moment[shape.nodes[v] * dim + d] += mass * shape.values[v] * x[d];
+            {
+              double *const m      = moment + shape.nodes[v] * (dim + 1);
+              const double  weight = mass * shape.values[v];
+              for (unsigned int d = 0; d < dim; ++d)
+                m[d] += weight * x[d];
+              m[dim] += weight * spacing;
+            }
         }
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {

@@ -10,7 +10,6 @@
 #include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/postprocess/particle_output.h>
 #include <sable/mpm/seeding.h>
-#include <sable/mpm/surface_offset.h>
 #include <sable/mpm/simulator.h>
 #include <sable/mpm/stress_update.h>
 
@@ -101,10 +100,6 @@ namespace sable::mpm
         layout.n_history = std::max(layout.n_history, materials.back()->n_history());
       }
     layout.initial_position_stored = parameters.displacement_output;
-    double surface_offset          = 0;
-    for (const auto &body : parameters.bodies)
-      surface_offset = std::max(surface_offset, surface_centroid_offset(body.particles_per_direction));
-    boundary_conditions.set_surface_offset(surface_offset);
     if (parameters.contact.model != ContactParameters::Model::none &&
         parameters.bodies.size() > 1)
       {

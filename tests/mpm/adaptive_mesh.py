@@ -13,7 +13,9 @@
    momentum constant to 1e-12 relative, strain energy below 1e-12 of the
    kinetic energy, and the mesh really changed (the cell count varies).
 3. A grain resting on a friction floor under gravity (lithostatic initial
-   stress), on a grid refined around its surface to the fine cell size, and
+   stress), on a grid refined around its surface to the fine cell size (the
+   cells at its contact are refined after seeding, so they hold points
+   seeded at twice their spacing: the wall reads the spacing), and
    on a uniform grid of that fine size (same time step): both settle by the
    elastic compression of a column of the grain's height, delta, and
    oscillate about it; mean settlement and rms velocity agree within 25%
@@ -84,11 +86,14 @@ for name, rows in (("adapted", adaptive), ("uniform", uniform)):
     rms_v = (sum(r["body0_vy"] ** 2 for r in rows) / len(rows)) ** 0.5
     summary[name] = (mean_settlement, rms_v)
     # released from the stress state of a column, not of a disk: it
-    # oscillates about its settled position, overshooting up to about 2x
+    # oscillates about its settled position, overshooting up to about 2x;
+    # the friction wall lets the surface it estimates from the nodes' mass
+    # centroids come within its touching tolerance (0.01 fine cell, 0.66
+    # delta here) before it acts
     check(f"resting grain, {name} grid: mean settlement within [0.5, 2] delta (delta = {delta:.2e} m)",
           0.5 * delta <= mean_settlement <= 2 * delta, f"{mean_settlement / delta:.3f} delta")
-    check(f"resting grain, {name} grid: the centre never sinks more than 3 delta", deepest <= 3 * delta,
-          f"{deepest / delta:.3f} delta")
+    check(f"resting grain, {name} grid: the centre never sinks more than 3 delta + 0.01 fine cell",
+          deepest <= 3 * delta + 0.01 / 32, f"{deepest / delta:.3f} delta")
     check(f"resting grain, {name} grid: no sideways motion (symmetry, 1e-12 m)",
           max(abs(r["body0_x"] - 0.5) for r in rows) < 1e-12)
 for i, what in enumerate(("mean settlement", "rms vertical velocity")):

@@ -30,8 +30,9 @@ namespace sable::mpm
     /// Size every field for @p grid's nodes; with @p with_material_extent
     /// also the material extent a friction wall with material contact
     /// reads (BoundaryConditions::set_material_extent()), with
-    /// @p with_mass_moment the mass moments sum_p N_i m_p x_p a friction
-    /// wall with surface-position contact reads.
+    /// @p with_mass_moment the mass moments sum_p N_i m_p x_p and the
+    /// mass-weighted point spacings sum_p N_i m_p s_p a friction wall with
+    /// surface-position contact reads.
     void
     reinit(const Grid<dim> &grid, const bool with_material_extent, const bool with_mass_moment);
 

@@ -5,25 +5,37 @@ namespace sable::mpm
 {
   /**
    * How far, in cells, the mass centroid of a node on a flat body surface
-   * lies inside the body: k points per cell direction at (j + 1/2)/k of the
-   * cell below the surface node, weighted by the hat function 1 − y, have
-   * their centroid at sum w y / sum w (1/2 for k = 1, 0.352 for k = 3, 1/3
-   * for k → ∞). Contact between bodies and friction walls with surface-
-   * position contact take a body's surface to lie this far outside the
-   * centroid.
+   * lies inside the body when the points sit at spacing @p spacing (in
+   * cells) from the surface, at (j + 1/2) spacing: weighted by the hat
+   * function 1 − y over the cell below the surface node, their centroid is
+   * at sum w y / sum w (1/2 for a spacing of one cell, 0.375 for half a
+   * cell, 0.352 for a third, 1/3 as the spacing goes to zero). A spacing of
+   * two cells or more leaves one point per node's reach, half a spacing
+   * inside the surface. Contact between bodies and friction walls with
+   * surface-position contact take a body's surface to lie this far outside
+   * the centroid.
    */
   inline double
-  surface_centroid_offset(const unsigned int points_per_cell_direction)
+  surface_centroid_offset_for_spacing(const double spacing)
   {
-    const unsigned int k        = points_per_cell_direction;
-    double             weighted = 0, weights = 0;
-    for (unsigned int j = 0; j < k; ++j)
+    if (spacing >= 2.)
+      return 0.5 * spacing;
+    double weighted = 0, weights = 0;
+    for (unsigned int j = 0; (j + 0.5) * spacing < 1.; ++j)
       {
-        const double y = (j + 0.5) / k;
+        const double y = (j + 0.5) * spacing;
         weighted += (1 - y) * y;
         weights += 1 - y;
       }
     return weighted / weights;
+  }
+
+  /// surface_centroid_offset_for_spacing() for points seeded k per cell
+  /// direction on the cell they sit in.
+  inline double
+  surface_centroid_offset(const unsigned int points_per_cell_direction)
+  {
+    return surface_centroid_offset_for_spacing(1. / points_per_cell_direction);
   }
 } // namespace sable::mpm
 

@@ -2,6 +2,7 @@
 #include <deal.II/base/geometry_info.h>
 
 #include <sable/mpm/boundaries/boundary_conditions.h>
+#include <sable/mpm/surface_offset.h>
 #include <sable/mpm/contact/coulomb.h>
 
 #include <algorithm>
@@ -202,14 +203,17 @@ namespace sable::mpm
         case WallContact::surface_position:
           {
             Assert(mass_moment != nullptr, ExcInternalError());
-            // the body's surface lies surface_offset cells outside the
-            // node's mass centroid: on a flat surface at the wall exactly;
-            // on a round body rolling on the wall only at the node nearest
-            // its contact (a node a cell ahead sees the surface about a
-            // fifteenth of a cell up at eight cells per radius)
-            const double centroid = mass_moment[c.node * dim + c.direction] / mass;
-            const double gap      = c.sign * (c.position - centroid) -
-                               (surface_offset + touching_tolerance) * c.cell_size;
+            // the body's surface lies surface_centroid_offset cells outside
+            // the node's mass centroid: on a flat surface at the wall
+            // exactly; on a round body rolling on the wall only at the node
+            // nearest its contact (a node a cell ahead sees the surface
+            // about a fifteenth of a cell up at eight cells per radius)
+            const double *moment   = mass_moment + c.node * (dim + 1);
+            const double  centroid = moment[c.direction] / mass;
+            const double  offset =
+              surface_centroid_offset_for_spacing(moment[dim] / (mass * c.cell_size));
+            const double gap = c.sign * (c.position - centroid) -
+                               (offset + touching_tolerance) * c.cell_size;
             return gap - approach > 0.;
           }
       }
@@ -243,13 +247,6 @@ namespace sable::mpm
   {
     mass_moment      = moment;
     extent_time_step = time_step;
-  }
-
-  template <int dim>
-  void
-  BoundaryConditions<dim>::set_surface_offset(const double offset)
-  {
-    surface_offset = offset;
   }
 
   template <int dim>

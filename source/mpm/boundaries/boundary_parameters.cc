@@ -37,24 +37,23 @@ namespace sable::mpm
                       "Coulomb coefficient per friction boundary, e.g. "
                       "'2: 0.3'.");
     prm.declare_entry("Friction wall contact",
-                      "material",
+                      "surface position",
                       wall_contacts.pattern(),
                       "When a friction wall acts at a wall node. 'surface "
-                      "position': only where the body's surface, "
-                      "estimated from the node's mass centroid as for "
-                      "contact between bodies (Contact/Detection), reaches "
-                      "the wall within the step. A rolling disk then touches "
+                      "position' (default): only where the body's surface, "
+                      "estimated from the node's mass centroid and the "
+                      "spacing its points were seeded at (on an adapted "
+                      "grid a cell may hold points seeded on a coarser "
+                      "one), reaches the wall within the step. A rolling disk then touches "
                       "the wall at about one node, as a rigid disk at one "
                       "point; with the criteria below a node a cell ahead "
                       "of the contact is held too, which locks the rotation "
                       "until the disk climbs over it (A1 at 16 cells per "
                       "diameter lagged 9.6%, 2.0% with it; see "
-                      "doc/validation.md; not yet the default, as a grain "
-                      "resting on an adapted grid settles 5 times deeper "
-                      "than on the uniform fine grid). approach: "
+                      "doc/validation.md). approach: "
                       "whenever the node's velocity approaches the wall "
                       "(SPEC step 6 with the wall as the other body). "
-                      "material (default): only if, in addition, the material points "
+                      "material: only if, in addition, the material points "
                       "around the node reach the wall within the step "
                       "(the nearest point's edge, x_p -+ l_p/2 with l_p^dim "
                       "its current volume, at most dt times the node's "

@@ -62,20 +62,16 @@ namespace sable::mpm
     needs_mass_moment() const;
 
     /**
-     * The mass moments sum_p N_i(x_p) m_p x_p (dim values per relevant
-     * node). A friction wall with surface-position contact acts at a node
-     * only where the body's surface, taken @p surface_offset cells (see
-     * surface_centroid_offset()) outside the node's mass centroid, is within
-     * a hundredth of a cell of the wall after the step's approach. The
-     * pointer must stay valid until apply().
+     * The mass moments sum_p N_i(x_p) m_p x_p and mass-weighted point
+     * spacings sum_p N_i(x_p) m_p s_p (dim + 1 values per relevant node). A
+     * friction wall with surface-position contact acts at a node only where
+     * the body's surface, taken surface_centroid_offset_for_spacing() cells
+     * outside the node's mass centroid, is within a hundredth of a cell of
+     * the wall after the step's approach. The pointer must stay valid until
+     * apply().
      */
     void
     set_mass_moment(const double *moment, const double time_step);
-
-    /// The centroid offset of the bodies' surfaces in cells (the largest
-    /// over the bodies, so that no body reaches the wall unseen).
-    void
-    set_surface_offset(const double offset);
 
     /**
      * Apply the conditions to velocities remapped from the particles (MUSL's
@@ -164,7 +160,6 @@ namespace sable::mpm
     const double *    material_extent = nullptr;
     const double *    mass_moment      = nullptr;
     double            extent_time_step = 0.;
-    double            surface_offset   = 0.5;
     /// surfaces closer to a wall than this, in cells, touch it (as between
     /// bodies, BardenhagenContact::touching_tolerance)
     static constexpr double touching_tolerance = 0.01;

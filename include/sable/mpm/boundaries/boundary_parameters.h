@@ -41,7 +41,7 @@ namespace sable::mpm
     Tensor<1, dim> velocity = {};
     /// Friction walls only: where the wall acts (Boundary conditions/
     /// Friction wall contact).
-    WallContact wall_contact = WallContact::material;
+    WallContact wall_contact = WallContact::surface_position;
 
     /// Declare the entries of the current subsection.
     static void
