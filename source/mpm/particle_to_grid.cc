@@ -46,10 +46,7 @@ namespace sable::mpm
       if (moment != nullptr)
         {
           const Point<dim> x = particle.get_location();
-          // the spacing the point was seeded at: on an adapted grid a cell
-          // may hold points seeded on a coarser or finer one
-          const double spacing = dim == 2 ? std::sqrt(props[Layout::initial_volume]) :
-                                            std::cbrt(props[Layout::initial_volume]);
+          const double     spacing = Layout::seeding_spacing(props);
           for (unsigned int v = 0; v < shape.n_nodes; ++v)
             {
               double *const m      = moment + shape.nodes[v] * (dim + 1);

@@ -103,15 +103,10 @@ namespace sable::mpm
     if (parameters.contact.model != ContactParameters::Model::none &&
         parameters.bodies.size() > 1)
       {
-        std::vector<unsigned int> groups, particles_per_direction;
+        std::vector<unsigned int> groups;
         for (const auto &body : parameters.bodies)
-          {
-            groups.push_back(body.group);
-            particles_per_direction.push_back(body.particles_per_direction);
-          }
-        contact = std::make_unique<MultiBodyContact<dim>>(parameters.contact,
-                                                          groups,
-                                                          particles_per_direction);
+          groups.push_back(body.group);
+        contact = std::make_unique<MultiBodyContact<dim>>(parameters.contact, groups);
       }
 
     if (parameters.refinement.enabled())

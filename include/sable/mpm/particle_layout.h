@@ -4,6 +4,8 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <cmath>
+
 namespace sable::mpm
 {
   /**
@@ -87,6 +89,15 @@ namespace sable::mpm
         for (unsigned int j = 0; j < dim; ++j)
           result[i][j] = volume * props[stress + stress_component(i, j)];
       return result;
+    }
+
+    /// The spacing the point was seeded at, V0^(1/dim): on an adapted grid
+    /// a cell may hold points seeded on a coarser or finer one.
+    template <typename Properties>
+    static double
+    seeding_spacing(const Properties &props)
+    {
+      return dim == 2 ? std::sqrt(props[initial_volume]) : std::cbrt(props[initial_volume]);
     }
   };
 } // namespace sable::mpm

@@ -20,6 +20,8 @@ namespace sable::mpm
   {
     if (spacing >= 2.)
       return 0.5 * spacing;
+    if (spacing < 1e-2) // the limit of a continuum, within 1e-4
+      return 1. / 3.;
     double weighted = 0, weights = 0;
     for (unsigned int j = 0; (j + 0.5) * spacing < 1.; ++j)
       {

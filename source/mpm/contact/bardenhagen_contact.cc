@@ -14,15 +14,11 @@ namespace sable::mpm
   template <int dim>
   BardenhagenContact<dim>::BardenhagenContact(
     const ContactParameters &        parameters,
-    const std::vector<unsigned int> &body_groups,
-    const std::vector<unsigned int> &particles_per_direction)
+    const std::vector<unsigned int> &body_groups)
     : parameters(parameters)
     , body_groups(body_groups)
     , use_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
   {
-    for (unsigned int b = 0; b < body_groups.size(); ++b)
-      surface_offset.push_back(surface_centroid_offset(
-        b < particles_per_direction.size() ? particles_per_direction[b] : 2));
     const unsigned int n = body_groups.size();
     pair_forces.assign(parameters.reported_pairs.size(), Tensor<1, dim>());
     // a dense table is fine for the few bodies whose pairs are reported;
@@ -422,8 +418,14 @@ namespace sable::mpm
     // the small strains, and a resting contact must keep its friction at
     // every node (a block held by friction creeps 7% of a cell in 0.25 s
     // without it, 1.3% with it; 0.1 cell would slow a rolling disk)
+    // each body's surface lies an offset outside its centroid that
+    // follows the spacing its points were seeded at (in cells along the
+    // normal)
+    const double size = std::sqrt(cell);
     const double touching =
-      (surface_offset[a.body] + surface_offset[b.body] + touching_tolerance) * std::sqrt(cell);
+      (surface_centroid_offset_for_spacing(a.mass_spacing / (a.mass * size)) +
+       surface_centroid_offset_for_spacing(b.mass_spacing / (b.mass * size)) + touching_tolerance) *
+      size;
     // apart, a sideways offset of the centroids beyond a quarter cell
     // counts too: off the line of centres of two round bodies the normal
     // tilts away from their distance, and two disks felt a force a cell

@@ -10,12 +10,11 @@ namespace sable::mpm
   template <int dim>
   MultiBodyContact<dim>::MultiBodyContact(
     const ContactParameters &        parameters,
-    const std::vector<unsigned int> &body_groups,
-    const std::vector<unsigned int> &particles_per_direction)
+    const std::vector<unsigned int> &body_groups)
     : parameters(parameters)
     , with_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
     , with_position(parameters.detection == ContactParameters::Detection::surface_position)
-    , model(parameters, body_groups, particles_per_direction)
+    , model(parameters, body_groups)
   {}
 
   template <int dim>

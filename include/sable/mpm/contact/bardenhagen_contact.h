@@ -40,11 +40,8 @@ namespace sable::mpm
   class BardenhagenContact
   {
   public:
-    /// @p particles_per_direction: per body (for the 'surface position'
-    /// detection; empty: 2 everywhere).
     BardenhagenContact(const ContactParameters &        parameters,
-                       const std::vector<unsigned int> &body_groups,
-                       const std::vector<unsigned int> &particles_per_direction = {});
+                       const std::vector<unsigned int> &body_groups);
 
     /**
      * Apply contact at every contact node. @p spacing gives the cell size
@@ -182,9 +179,6 @@ namespace sable::mpm
     /// index into pair_forces of the pair (a, b), a < b; or invalid
     std::vector<unsigned int> reported_pair_index;
     const bool                use_traction;
-    /// per body: the distance from its surface to its mass centroid at a
-    /// surface node, in cells (points filling the cells up to the surface)
-    std::vector<double> surface_offset;
     /// surfaces closer than this, in cells, touch (surfaces_meet())
     static constexpr double touching_tolerance = 0.01;
     /// sideways offset of the centroids, in cells, that surfaces_meet()

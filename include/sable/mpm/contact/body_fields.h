@@ -36,6 +36,9 @@ namespace sable::mpm
       Tensor<1, dim> mass_gradient;
       /// sum_p m_p N x_p: over mass, the body's centroid near the node
       Tensor<1, dim> mass_position;
+      /// sum_p m_p N s_p: over mass, the spacing the points near the node
+      /// were seeded at (s_p = V_p^(1/dim) of the initial volume)
+      double mass_spacing;
       /// sum_p m_p sigma_p N (in-plane part), for the traction criterion
       SymmetricTensor<2, dim> mass_stress;
       Tensor<1, dim>          old_velocity;

@@ -37,11 +37,8 @@ namespace sable::mpm
   public:
     using Record = typename BodyFields<dim>::Record;
 
-    /// @p particles_per_direction: each body's points per cell direction
-    /// (the 'surface position' detection needs them).
     MultiBodyContact(const ContactParameters &        parameters,
-                     const std::vector<unsigned int> &body_groups,
-                     const std::vector<unsigned int> &particles_per_direction = {});
+                     const std::vector<unsigned int> &body_groups);
 
     /// Find this step's contact nodes (bodies per node) and create their
     /// zeroed records; threaded over the coloured cells with points.
@@ -93,7 +90,10 @@ namespace sable::mpm
               record.force -= volume_stress * shape.gradients[v];
               record.mass_gradient += mass * shape.gradients[v];
               if (with_position)
-                record.mass_position += weight * location;
+                {
+                  record.mass_position += weight * location;
+                  record.mass_spacing += weight * ParticleLayout<dim>::seeding_spacing(properties);
+                }
               if (with_traction)
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = i; j < dim; ++j)
