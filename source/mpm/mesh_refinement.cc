@@ -6,6 +6,7 @@
 #include <sable/mpm/owned_cell_strip.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace sable::mpm
 {
@@ -206,8 +207,18 @@ namespace sable::mpm
         if (!cell->is_locally_owned())
           continue;
         const int cell_level = level(cell);
+        // a cell's children hold at least one of its points per direction:
+        // finer, a node may see one body only where two meet, and the
+        // bodies pass through each other (a disk seeded two points per
+        // coarse cell and dropped on a plane body sank in at four fine
+        // cells per coarse one)
+        double child_size = std::numeric_limits<double>::max();
+        for (unsigned int d = 0; d < dim; ++d)
+          child_size = std::min(child_size, 0.5 * cell->extent_in_direction(d));
+        const bool points_allow =
+          contents[cell->active_cell_index()].seeding_spacing <= child_size * (1 + 1e-6);
         if (decisions[cell->active_cell_index()] == refine &&
-            cell_level < static_cast<int>(parameters.maximum_level))
+            cell_level < static_cast<int>(parameters.maximum_level) && points_allow)
           {
             cell->set_refine_flag();
             ++n_refine;

@@ -47,7 +47,10 @@ namespace sable::mpm
                       Patterns::Integer(0, 12),
                       "Finest refinement level, counted from the starting grid "
                       "(Grid/Subdivisions), in 0..12. Body geometry criteria "
-                      "refine to it before the bodies are seeded.");
+                      "refine to it before the bodies are seeded; later a "
+                      "cell with points is refined only while its children "
+                      "keep at least one of them per direction (the "
+                      "spacing they were seeded at).");
     prm.declare_entry("Minimum level",
                       "0",
                       Patterns::Integer(0, 12),

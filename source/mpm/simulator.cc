@@ -294,8 +294,12 @@ namespace sable::mpm
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto &particle : particle_handler->particles_in_cell(cell))
-          contents[cell->active_cell_index()].add(
-            static_cast<unsigned int>(particle.get_properties()[layout.body]));
+          {
+            const auto props = particle.get_properties();
+            contents[cell->active_cell_index()].add(static_cast<unsigned int>(props[layout.body]),
+                                                    1,
+                                                    ParticleLayout<dim>::seeding_spacing(props));
+          }
     // refine at once; coarsening only saves work, so it waits for a
     // refinement or for every fourth adaptation (each one rebuilds the
     // forest, the node numbering and the hanging-node tables)

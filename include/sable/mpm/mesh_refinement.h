@@ -5,6 +5,7 @@
 
 #include <sable/mpm/parameters.h>
 
+#include <algorithm>
 #include <map>
 #include <vector>
 
@@ -43,13 +44,17 @@ namespace sable::mpm
     {
       int          body        = no_body;
       unsigned int n_particles = 0;
+      /// the largest spacing its points were seeded at (0: points still to
+      /// be seeded on the cell)
+      double seeding_spacing = 0;
 
       void
-      add(const unsigned int body_index, const unsigned int count = 1)
+      add(const unsigned int body_index, const unsigned int count = 1, const double spacing = 0)
       {
         if (count == 0)
           return;
         n_particles += count;
+        seeding_spacing = std::max(seeding_spacing, spacing);
         if (body == no_body)
           body = body_index;
         else if (body != static_cast<int>(body_index))
