@@ -1,10 +1,12 @@
 #include <deal.II/base/mpi.h>
 
+#include <sable/mpm/bodies/conforming_seeding.h>
 #include <sable/mpm/owned_cell_strip.h>
 #include <sable/mpm/q1_shape.h>
 #include <sable/mpm/seeding.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 namespace sable::mpm
@@ -74,12 +76,10 @@ namespace sable::mpm
                                             make_array_view(properties));
         };
 
-        if (body.shape == BodyParameters<dim>::Shape::points)
-          {
-            // each point in the one owned cell holding it (cells half open,
-            // closed at the grid's upper bounds); points sorted by x to
-            // find a cell's in a slab
-            const auto &cloud = body.cloud;
+        // each point of a cloud in the one owned cell holding it (cells
+        // half open, closed at the grid's upper bounds); points sorted by
+        // x to find a cell's in a slab
+        const auto seed_cloud = [&](const PointCloud<dim> &cloud) {
             std::vector<unsigned int> order(cloud.positions.size());
             std::iota(order.begin(), order.end(), 0u);
             std::sort(order.begin(), order.end(), [&](const unsigned int i, const unsigned int j) {
@@ -111,6 +111,23 @@ namespace sable::mpm
                             cloud.velocities.empty() ? nullptr : &cloud.velocities[*i]);
                 }
             });
+        };
+
+        if (body.shape == BodyParameters<dim>::Shape::points)
+          {
+            seed_cloud(body.cloud);
+            continue;
+          }
+        if (body.seeding == BodyParameters<dim>::Seeding::conforming)
+          {
+            // spacing h/k of the smallest cell the body overlaps, on every rank
+            double smallest = std::numeric_limits<double>::max();
+            owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
+              for (unsigned int d = 0; d < dim; ++d)
+                smallest = std::min(smallest, strip_cell.upper[d] - strip_cell.lower[d]);
+            });
+            smallest = Utilities::MPI::min(smallest, triangulation.get_communicator());
+            seed_cloud(conforming_ball_points(body.center, body.radius, smallest / k));
             continue;
           }
 

@@ -27,6 +27,13 @@ namespace sable::mpm
       points ///< material points read from 'Points file'
     };
     Shape        shape  = Shape::disk;
+    /// Where a disk's or sphere's points go.
+    enum class Seeding
+    {
+      lattice, ///< k^dim points per cell, at the centres of equal sub-cells
+      conforming ///< rings (2D) or shells (3D) parallel to the surface
+    };
+    Seeding      seeding = Seeding::lattice;
     Point<dim>   center = {};
     double       radius = 0.;
     Point<dim>   lower_corner = {};
