@@ -119,6 +119,19 @@ namespace sable::mpm
                                                           particles_per_direction);
       }
 
+    prescribed_velocities = PrescribedVelocities<dim>(parameters.bodies);
+    if (prescribed_velocities.any())
+      {
+        check_input(contact != nullptr || parameters.bodies.size() == 1,
+                    "Contact/Model",
+                    "none",
+                    "a contact model for a scene with a body of prescribed "
+                    "velocity and other bodies");
+        grid_to_particle.set_prescribed_velocities(&prescribed_velocities);
+        if (contact)
+          contact->set_prescribed_velocities(&prescribed_velocities);
+      }
+
     if (parameters.refinement.enabled())
       mesh_refinement = std::make_unique<MeshRefinement<dim>>(parameters.refinement,
                                                               parameters.boundaries,
@@ -198,6 +211,16 @@ namespace sable::mpm
                 layout,
                 parameters.gravity,
                 *particle_handler);
+    // a driver's points start with its velocity at t = 0
+    if (prescribed_velocities.any())
+      for (auto &particle : *particle_handler)
+        {
+          const auto         props = particle.get_properties();
+          const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+          if (prescribed_velocities.is_prescribed(body))
+            for (unsigned int d = 0; d < dim; ++d)
+              props[layout.velocity + d] = prescribed_velocities.velocity(body)[d];
+        }
     if (parallel && parameters.balance_particles)
       {
         connect_cell_weights();
@@ -343,6 +366,25 @@ namespace sable::mpm
   Simulator<dim>::advance()
   {
     state.time_step = compute_time_step();
+    if (prescribed_velocities.any() && prescribed_velocities.update(state.time))
+      {
+        // a driver that starts (or stops) changes its kinetic energy: work
+        // done on it from outside, as a moving wall's
+        double work = 0;
+        for (const auto &particle : *particle_handler)
+          {
+            const auto         props = particle.get_properties();
+            const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+            if (!prescribed_velocities.is_prescribed(body))
+              continue;
+            double v2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              v2 += props[layout.velocity + d] * props[layout.velocity + d];
+            work += 0.5 * props[layout.mass] *
+                    (prescribed_velocities.velocity(body).norm_square() - v2);
+          }
+        state.boundary_work += Utilities::MPI::sum(work, communicator);
+      }
     // unless the particle container is as the last step left it
     if (!particle_cells_current)
       particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
@@ -413,6 +455,9 @@ namespace sable::mpm
           parameters.gravity,
           state.time_step,
           nodal_fields.n_owned_nodes());
+        // a driver's work enters the energy balance as a moving wall's
+        if (prescribed_velocities.any())
+          state.boundary_work += Utilities::MPI::sum(contact->get_driver_work(), communicator);
       }
   }
 
