@@ -719,8 +719,22 @@ namespace sable::mpm
         history_names = material->history_names();
     ParticleOutput<dim> data_out(layout,
                                  history_names,
-                                 /*tensors=*/parameters.output_format == OutputFormat::vtu);
-    data_out.build_patches(*particle_handler);
+                                 /*tensors=*/parameters.output_format == OutputFormat::vtu,
+                                 parameters.smoothed_stress_output);
+    if (parameters.smoothed_stress_output)
+      {
+        TimerOutput::Scope scope(timer, "smoothed stress (in output)");
+        if (!particle_cells_current)
+          {
+            particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
+            particle_cells_current = true;
+          }
+        StressSmoothing<dim> smoothing;
+        smoothing.compute(particle_cells, grid, particle_handler->get_max_local_particle_index());
+        data_out.build_patches(*particle_handler, &smoothing);
+      }
+    else
+      data_out.build_patches(*particle_handler);
     const unsigned int counter = state.output_counter++;
     particle_series.write(data_out,
                           particle_handler->n_locally_owned_particles() > 0,
