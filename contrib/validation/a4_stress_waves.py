@@ -28,7 +28,8 @@ the load path (statistics.csv, columns contact<a>_<b>_fx, _fy) gives
   neighbour at 135 degrees).
 
 Writes a4_arrivals.md (the table) into --output-dir (default: the work
-directory) and prints it.
+directory) and prints it; each run's console output (with its timings) is
+in WORK/a4_<case>_n<cells>/sable.log.
 
 Usage: contrib/validation/a4_stress_waves.py [--sable build/sable]
            [--work DIR] [--cells 20 40 80] [--cases collinear zigzag glued]
@@ -112,6 +113,7 @@ def subdivisions(case, cells_per_diameter):
 def run(sable, case, cells, work, particles):
     """Run one case at one resolution; return (rows, wall time s, points)."""
     directory = os.path.join(work, f"a4_{case}_n{cells}")
+    os.makedirs(directory, exist_ok=True)
     nx, ny = subdivisions(case, cells)
     command = [sable, os.path.join(ROOT, "prm", f"a4_{case}.prm"), "--overwrite",
                "--set", f"Grid/Subdivisions={nx}, {ny}",
@@ -121,6 +123,8 @@ def run(sable, case, cells, work, particles):
         command += ["--set", "Output/Particle output interval=1"]
     result = subprocess.run(command, capture_output=True, text=True)
     output = result.stdout + result.stderr
+    with open(os.path.join(directory, "sable.log"), "w") as f:
+        f.write(output)
     if result.returncode != 0:
         sys.exit(f"a4_stress_waves.py: sable failed on {case} at {cells} cells:\n{output}")
     wall = float(re.search(r"in ([0-9.e+-]+) s wall time", output).group(1))
@@ -148,7 +152,7 @@ def table(results, threshold):
         times = ", ".join(f"{a}-{b}: {fmt(t)}" for (a, b), t in zip(pairs, s["times"]))
         transits = ", ".join(fmt(t) for t in s["transits"])
         frames = ", ".join(str(t) for t in CASES[case][6])
-        lines.append(f"| {label} | {cells} | {points} | {fmt(wall, 1)} | {times} | {transits} | "
+        lines.append(f"| {label} | {cells} | {points if points is not None else '-'} | {fmt(wall, 1)} | {times} | {transits} | "
                      f"{fmt(s['speed'])} | {frames} |")
     return "\n".join(lines) + "\n"
 
