@@ -15,6 +15,8 @@ walls).
   enters the balance as boundary work, so the balance gains nothing
   (without it the disk's kinetic energy would be a gain of the whole
   supplied energy);
+- two MPI ranks give the same disk velocity, pin travel, work and
+  momentum (1e-9 relative: summation order only);
 - a prescribed body without a contact model is refused, naming the entry."""
 import math
 from scene_test import *
@@ -68,6 +70,14 @@ check("pin work counted: boundary work >= the disk's kinetic energy", work > 0.9
       f"work {work:.4g} J, disk kinetic energy about {kinetic_disk:.4g} J")
 drift = max(r["energy_drift"] for r in rows)
 check("energy balance: no gain beyond 0.1%", drift <= 1e-3, f"largest drift {drift:.3g}")
+
+# the same on two MPI ranks (the drivers' records on ghost nodes, the work
+# summed over owned nodes only): equal to round-off
+rows2 = run("push_mpi2", entries, [disk, pin], ranks=2)[2]
+for column in ("body0_vx", "body1_x", "boundary_work", "momentum_x"):
+    a, b = rows[-1][column], rows2[-1][column]
+    check(f"2 ranks: final {column} as on 1 rank", abs(a - b) <= 1e-9 * max(abs(a), 1e-300),
+          f"{a:.15g} and {b:.15g}")
 
 # a driver needs contact to act on other bodies
 code, output, _ = run("no_contact", dict(entries, **{"Contact/Model": "none"}), [disk, pin], expect_success=False)
