@@ -27,6 +27,7 @@
 #include <sable/mpm/simulator.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "test_support.h"
@@ -36,6 +37,15 @@ using sable_tests::check;
 
 namespace
 {
+  std::string
+  scientific(const double x)
+  {
+    std::ostringstream s;
+    s.precision(2);
+    s << std::scientific << x;
+    return s.str();
+  }
+
   template <int dim>
   void
   run_case()
@@ -169,19 +179,19 @@ namespace
         if (field == Field::uniform)
           check(name + "uniform stress exact at all " + std::to_string(n_body) +
                   " points, next to another body's stress (largest error " +
-                  std::to_string(worst_all / scale) + " of |sigma|)",
+                  scientific(worst_all / scale) + " of |sigma|)",
                 worst_all <= 1e-12 * scale);
         else
           check(name + (field == Field::linear ? "linear" : "linear + checkerboard") +
                   " stress exact at the " + std::to_string(n_interior) +
-                  " interior points (largest error " + std::to_string(worst_interior / scale) +
+                  " interior points (largest error " + scientific(worst_interior / scale) +
                   " of |sigma|)",
                 n_interior > 0 && worst_interior <= 1e-12 * scale);
         if (field == Field::checkerboard)
           {
             const double rms = std::sqrt(squares / n_body);
             check(name + "checkerboard +-C over the whole body: rms deviation " +
-                    std::to_string(rms / C) + " C < C/2",
+                    scientific(rms / C) + " C < C/2",
                   rms < 0.5 * C);
           }
       }
