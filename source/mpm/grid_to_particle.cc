@@ -47,6 +47,8 @@ namespace sable::mpm
     const std::vector<double> &new_velocity = fields.get_new_velocity();
     const std::vector<double> &old_velocity = fields.get_old_velocity();
 
+    const PrescribedVelocities<dim> *const drivers =
+      prescribed != nullptr && prescribed->any() ? prescribed : nullptr;
     Report     report;
     std::mutex report_mutex;
     parallel::apply_to_subranges(
@@ -63,10 +65,19 @@ namespace sable::mpm
               {
                 const auto         props = particle.get_properties();
                 const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
-                grid.evaluate(data, particle.get_reference_location(), shape);
+                const bool driven = drivers != nullptr && drivers->is_prescribed(body);
                 Tensor<1, dim> velocity_change, grid_velocity;
                 Tensor<2, dim> L;
-                for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                if (driven)
+                  {
+                    // a rigid driver: its velocity, whatever the grid says
+                    grid_velocity = drivers->velocity(body);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      props[Layout::velocity + d] = grid_velocity[d];
+                  }
+                else
+                  grid.evaluate(data, particle.get_reference_location(), shape);
+                for (unsigned int v = 0; v < (driven ? 0 : shape.n_nodes); ++v)
                   {
                     const unsigned int node  = shape.nodes[v];
                     const double *     v_new = &new_velocity[node * dim];
@@ -97,7 +108,8 @@ namespace sable::mpm
                     for (unsigned int d = 0; d < dim; ++d)
                       {
                         double &v = props[Layout::velocity + d];
-                        v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
+                        if (!driven)
+                          v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
                         speed2 += v * v;
                       }
                     // a particle may not cross more than one cell per step

@@ -180,6 +180,18 @@ namespace sable::mpm
                       "momentum interpolated from the coarse side. Cell "
                       "fields: material_points (number in the cell), level "
                       "(refinement level) and rank (owning MPI rank).");
+    prm.declare_entry("Smoothed stress output",
+                      "false",
+                      Patterns::Bool(),
+                      "Also write with the particle output a smooth stress: "
+                      "each body's point stresses projected onto the grid "
+                      "nodes (weighted by shape function times volume) and "
+                      "interpolated back to its points, as the tensor "
+                      "smoothed_stress with its smoothed_pressure, "
+                      "smoothed_von_mises and smoothed_stress_difference "
+                      "(sigma_1 - sigma_2 of the stress in the x-y plane, "
+                      "for photoelastic fringes). Computed at output steps "
+                      "only.");
     prm.declare_entry("Displacement output",
                       "false",
                       Patterns::Bool(),
@@ -364,6 +376,7 @@ namespace sable::mpm
     p.contact_node_output = prm.get_bool("Contact node output");
     p.grid_output         = prm.get_bool("Grid output");
     p.displacement_output = prm.get_bool("Displacement output");
+    p.smoothed_stress_output = prm.get_bool("Smoothed stress output");
     p.statistics_interval = prm.get_integer("Statistics interval");
     p.progress_interval   = prm.get_integer("Progress interval");
     p.energy_growth_limit = prm.get_double("Energy growth limit");

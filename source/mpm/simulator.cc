@@ -109,6 +109,19 @@ namespace sable::mpm
         contact = std::make_unique<MultiBodyContact<dim>>(parameters.contact, groups);
       }
 
+    prescribed_velocities = PrescribedVelocities<dim>(parameters.bodies);
+    if (prescribed_velocities.any())
+      {
+        check_input(contact != nullptr || parameters.bodies.size() == 1,
+                    "Contact/Model",
+                    "none",
+                    "a contact model for a scene with a body of prescribed "
+                    "velocity and other bodies");
+        grid_to_particle.set_prescribed_velocities(&prescribed_velocities);
+        if (contact)
+          contact->set_prescribed_velocities(&prescribed_velocities);
+      }
+
     if (parameters.refinement.enabled())
       mesh_refinement = std::make_unique<MeshRefinement<dim>>(parameters.refinement,
                                                               parameters.boundaries,
@@ -188,6 +201,16 @@ namespace sable::mpm
                 layout,
                 parameters.gravity,
                 *particle_handler);
+    // a driver's points start with its velocity at t = 0
+    if (prescribed_velocities.any())
+      for (auto &particle : *particle_handler)
+        {
+          const auto         props = particle.get_properties();
+          const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+          if (prescribed_velocities.is_prescribed(body))
+            for (unsigned int d = 0; d < dim; ++d)
+              props[layout.velocity + d] = prescribed_velocities.velocity(body)[d];
+        }
     if (parallel && parameters.balance_particles)
       {
         connect_cell_weights();
@@ -337,6 +360,25 @@ namespace sable::mpm
   Simulator<dim>::advance()
   {
     state.time_step = compute_time_step();
+    if (prescribed_velocities.any() && prescribed_velocities.update(state.time))
+      {
+        // a driver that starts (or stops) changes its kinetic energy: work
+        // done on it from outside, as a moving wall's
+        double work = 0;
+        for (const auto &particle : *particle_handler)
+          {
+            const auto         props = particle.get_properties();
+            const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+            if (!prescribed_velocities.is_prescribed(body))
+              continue;
+            double v2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              v2 += props[layout.velocity + d] * props[layout.velocity + d];
+            work += 0.5 * props[layout.mass] *
+                    (prescribed_velocities.velocity(body).norm_square() - v2);
+          }
+        state.boundary_work += Utilities::MPI::sum(work, communicator);
+      }
     // unless the particle container is as the last step left it
     if (!particle_cells_current)
       particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
@@ -407,6 +449,9 @@ namespace sable::mpm
           parameters.gravity,
           state.time_step,
           nodal_fields.n_owned_nodes());
+        // a driver's work enters the energy balance as a moving wall's
+        if (prescribed_velocities.any())
+          state.boundary_work += Utilities::MPI::sum(contact->get_driver_work(), communicator);
       }
   }
 
@@ -668,8 +713,22 @@ namespace sable::mpm
         history_names = material->history_names();
     ParticleOutput<dim> data_out(layout,
                                  history_names,
-                                 /*tensors=*/parameters.output_format == OutputFormat::vtu);
-    data_out.build_patches(*particle_handler);
+                                 /*tensors=*/parameters.output_format == OutputFormat::vtu,
+                                 parameters.smoothed_stress_output);
+    if (parameters.smoothed_stress_output)
+      {
+        TimerOutput::Scope scope(timer, "smoothed stress (in output)");
+        if (!particle_cells_current)
+          {
+            particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
+            particle_cells_current = true;
+          }
+        StressSmoothing<dim> smoothing;
+        smoothing.compute(particle_cells, grid, particle_handler->get_max_local_particle_index());
+        data_out.build_patches(*particle_handler, &smoothing);
+      }
+    else
+      data_out.build_patches(*particle_handler);
     const unsigned int counter = state.output_counter++;
     particle_series.write(data_out,
                           particle_handler->n_locally_owned_particles() > 0,

@@ -3,6 +3,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <sable/mpm/bodies/prescribed_velocities.h>
 #include <sable/mpm/contact/multi_body_contact.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/nodal_fields.h>
@@ -56,6 +57,14 @@ namespace sable::mpm
       , velocity_gradients(velocity_gradients)
     {}
 
+    /// Points of prescribed-velocity bodies (kept by the caller) move with
+    /// their body's velocity and have no strain rate.
+    void
+    set_prescribed_velocities(const PrescribedVelocities<dim> *drivers)
+    {
+      prescribed = drivers;
+    }
+
     /// New velocities v = (1 - alpha)(v + sum N (v_new - v_old)) +
     /// alpha sum N v_new and positions x += dt sum N v_new.
     Report
@@ -101,6 +110,7 @@ namespace sable::mpm
     const NodalFields<dim> &     fields;
     const std::vector<double> &  body_wave_speed;
     std::vector<Tensor<2, dim>> &velocity_gradients;
+    const PrescribedVelocities<dim> *prescribed = nullptr;
   };
 } // namespace sable::mpm
 

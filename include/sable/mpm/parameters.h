@@ -86,6 +86,10 @@ namespace sable::mpm
     /// keep each point's initial position and write the displacement with
     /// the particle output (dim more properties per point)
     bool         displacement_output = false;
+    /// particle output also of the stress smoothed over the grid
+    /// (StressSmoothing), its pressure, von Mises and in-plane principal
+    /// stress difference
+    bool smoothed_stress_output = false;
     /// steps between CSV rows; 0 = with every particle output and
     /// progress line (Simulator::statistics_due())
     unsigned int statistics_interval = 0;

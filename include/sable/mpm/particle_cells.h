@@ -78,6 +78,13 @@ namespace sable::mpm
       return n_owned_cells;
     }
 
+    /// All cells with points, the ghost cells after the owned ones.
+    unsigned int
+    size() const
+    {
+      return cells.size();
+    }
+
     const Cell &
     operator[](const unsigned int i) const
     {

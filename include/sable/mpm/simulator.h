@@ -343,6 +343,8 @@ namespace sable::mpm
     unsigned int n_sorts = 0, n_sorts_skipped = 0;
     /// multi-body contact: only with a contact model and two or more bodies
     std::unique_ptr<MultiBodyContact<dim>> contact;
+    /// the bodies of prescribed velocity, with this step's velocities
+    PrescribedVelocities<dim> prescribed_velocities;
     /// only with refinement criteria
     std::unique_ptr<MeshRefinement<dim>> mesh_refinement;
 

@@ -169,6 +169,22 @@ namespace sable::mpm
                       "(doc/validation.md).");
     MaterialParameters::declare_parameters(prm);
     prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
+    prm.declare_entry("Prescribed velocity",
+                      "",
+                      Patterns::Anything(),
+                      "Empty (a free body), or m/s (" + std::to_string(dim) +
+                        " numbers): the body is a rigid driver, e.g. a "
+                        "loading pin; all its points move with this velocity "
+                        "from 'Prescribed velocity start time' on and stay "
+                        "at rest before, whatever the forces on them, and "
+                        "the other bodies meet it through contact as a body "
+                        "of unbounded mass (a contact model is needed). Its "
+                        "stress stays as seeded. The work it does counts as "
+                        "boundary work in the energy balance.");
+    prm.declare_entry("Prescribed velocity start time",
+                      "0",
+                      Patterns::Double(),
+                      "s, >= 0: when the prescribed velocity sets in (a step).");
     prm.declare_entry("Angular velocity",
                       dim == 2 ? "0" : "0, 0, 0",
                       Patterns::List(Patterns::Double(), dim == 2 ? 1 : 3, dim == 2 ? 1 : 3),
@@ -208,6 +224,10 @@ namespace sable::mpm
     points_file             = prm.get("Points file");
     material.parse_parameters(prm, path);
     velocity = read_vector<dim>(prm, "Velocity", path);
+    prescribed = !Utilities::trim(prm.get("Prescribed velocity")).empty();
+    if (prescribed)
+      prescribed_velocity = read_vector<dim>(prm, "Prescribed velocity", path);
+    prescribed_start_time = prm.get_double("Prescribed velocity start time");
     const std::vector<double> omega =
       Utilities::string_to_double(Utilities::split_string_list(prm.get("Angular velocity")));
     if (dim == 2)
@@ -246,6 +266,10 @@ namespace sable::mpm
                 particles_per_direction,
                 "an integer in 1..4");
     material.check(path);
+    check_input(prescribed_start_time >= 0,
+                path + "Prescribed velocity start time",
+                prescribed_start_time,
+                "a number >= 0 (s)");
     check_input(!lithostatic_stress || material.model != "neo-Hookean",
                 path + "Lithostatic initial stress",
                 "true",

@@ -92,6 +92,11 @@ namespace sable::mpm
           }
       },
       256);
+    const bool drivers = prescribed != nullptr && prescribed->any();
+    if (momentum_update)
+      driver_work = 0;
+    if (drivers)
+      hold_drivers(true, false, n_owned_nodes);
     if (momentum_update ? parameters.on_momentum_update : parameters.on_strain_update)
       model.apply(fields,
                   grid.node_spacing(),
@@ -99,8 +104,39 @@ namespace sable::mpm
                   n_owned_nodes,
                   momentum_update,
                   grid.triangulation.get_communicator());
+    if (drivers)
+      hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())
       boundary_conditions.apply_to_bodies(fields, !momentum_update, n_owned_nodes);
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::hold_drivers(const bool         before,
+                                      const bool         record_work,
+                                      const unsigned int n_owned_nodes)
+  {
+    const double factor = before ? driver_mass_factor : 1. / driver_mass_factor;
+    for (const unsigned int node : fields.get_contact_nodes())
+      {
+        const auto [begin, end] = fields.node_records(node);
+        for (Record *r = begin; r != end; ++r)
+          if (prescribed->is_prescribed(r->body))
+            {
+              const Tensor<1, dim> &velocity = prescribed->velocity(r->body);
+              // the impulse the driver gave the others: minus its own
+              // momentum change
+              if (!before && record_work && node < n_owned_nodes)
+                driver_work += r->mass * ((velocity - r->new_velocity) * velocity);
+              r->mass *= factor;
+              r->momentum *= factor;
+              r->mass_position *= factor;
+              r->mass_spacing *= factor;
+              r->mass_stress *= factor;
+              r->old_velocity = velocity;
+              r->new_velocity = velocity;
+            }
+      }
   }
 
   template class MultiBodyContact<2>;

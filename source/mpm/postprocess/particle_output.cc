@@ -16,13 +16,22 @@ namespace sable::mpm
         for (unsigned int j = 0; j < 3; ++j)
           names.push_back(name + "_" + axes[i] + axes[j]);
     }
+
+    /// sigma_1 - sigma_2 of the stress's x-y block
+    double
+    in_plane_difference(const SymmetricTensor<2, 3> &s)
+    {
+      return std::sqrt((s[0][0] - s[1][1]) * (s[0][0] - s[1][1]) + 4 * s[0][1] * s[0][1]);
+    }
   } // namespace
 
   template <int dim>
   ParticleOutput<dim>::ParticleOutput(const ParticleLayout<dim> &     layout,
                                       const std::vector<std::string> &history_names,
-                                      const bool                      tensors)
+                                      const bool                      tensors,
+                                      const bool                      smoothed)
     : layout(layout)
+    , smoothed(smoothed)
   {
     using Interpretation = DataComponentInterpretation::DataComponentInterpretation;
     names                = {"id", "body", "mass", "initial_volume"};
@@ -59,12 +68,26 @@ namespace sable::mpm
     names.push_back("von_mises");
     for (unsigned int h = 0; h < layout.n_history; ++h)
       names.push_back(h < history_names.size() ? history_names[h] : "history_" + std::to_string(h));
+    smoothed_stress = names.size();
+    if (smoothed)
+      {
+        add_tensor_names(names, "smoothed_stress");
+        if (tensors)
+          add_range(smoothed_stress,
+                    "smoothed_stress",
+                    DataComponentInterpretation::component_is_part_of_tensor);
+        names.push_back("smoothed_pressure");
+        names.push_back("smoothed_von_mises");
+        names.push_back("smoothed_stress_difference");
+      }
   }
 
   template <int dim>
   void
-  ParticleOutput<dim>::build_patches(const Particles::ParticleHandler<dim> &particles)
+  ParticleOutput<dim>::build_patches(const Particles::ParticleHandler<dim> &particles,
+                                     const StressSmoothing<dim> *            smoothing)
   {
+    Assert(!smoothed || smoothing != nullptr, ExcMessage("The smoothed stress is missing."));
     using Layout = ParticleLayout<dim>;
     patches.resize(particles.n_locally_owned_particles());
     unsigned int i = 0;
@@ -104,6 +127,17 @@ namespace sable::mpm
         value(stress + 10)            = std::sqrt(1.5 * scalar_product(s, s));
         for (unsigned int h = 0; h < layout.n_history; ++h)
           value(stress + 11 + h) = props[Layout::history + h];
+        if (smoothed)
+          {
+            const SymmetricTensor<2, 3> &smooth = (*smoothing)[particle.get_local_index()];
+            for (unsigned int r = 0; r < 3; ++r)
+              for (unsigned int c = 0; c < 3; ++c)
+                value(smoothed_stress + 3 * r + c) = smooth[r][c];
+            const SymmetricTensor<2, 3> s = deviator(smooth);
+            value(smoothed_stress + 9)    = -trace(smooth) / 3.;
+            value(smoothed_stress + 10)   = std::sqrt(1.5 * scalar_product(s, s));
+            value(smoothed_stress + 11)   = in_plane_difference(smooth);
+          }
       }
   }
 

@@ -46,6 +46,12 @@ namespace sable::mpm
     MaterialParameters material;
 
     Tensor<1, dim> velocity = {};
+    /// A rigid driver: every point moves with prescribed_velocity from
+    /// prescribed_start_time on (at rest before), whatever the forces; the
+    /// other bodies meet it through contact as a body of unbounded mass.
+    bool           prescribed = false;
+    Tensor<1, dim> prescribed_velocity = {};
+    double         prescribed_start_time = 0.;
     /// Rigid rotation about the body centre (2D uses only the z component).
     Tensor<1, 3> angular_velocity = {};
     /// Initialise σ = −p I with ∇p = ρ g, p = 0 at the body's top.

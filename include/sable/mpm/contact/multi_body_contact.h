@@ -4,6 +4,7 @@
 #include <deal.II/base/array_view.h>
 #include <deal.II/particles/particle_handler.h>
 
+#include <sable/mpm/bodies/prescribed_velocities.h>
 #include <sable/mpm/boundaries/boundary_conditions.h>
 #include <sable/mpm/cell_colouring.h>
 #include <sable/mpm/contact/bardenhagen_contact.h>
@@ -127,6 +128,25 @@ namespace sable::mpm
       return fields.is_contact_node(node) ? &fields.record(node, body) : nullptr;
     }
 
+    /// The bodies of prescribed velocity (kept by the caller), whose
+    /// records correct_velocities() sets to their velocity: the kernel
+    /// sees them with their masses times driver_mass_factor, so that the
+    /// other bodies take their velocity as from a rigid driver.
+    void
+    set_prescribed_velocities(const PrescribedVelocities<dim> *drivers)
+    {
+      prescribed = drivers;
+    }
+
+    /// Work the drivers did on the other bodies in the last
+    /// momentum-update pass (their impulses times their velocity; this
+    /// rank's nodes).
+    double
+    get_driver_work() const
+    {
+      return driver_work;
+    }
+
     const BodyFields<dim> &
     get_fields() const
     {
@@ -147,6 +167,20 @@ namespace sable::mpm
     }
 
   private:
+    /// Relative to the other bodies' nodal masses, the drivers' masses
+    /// differ from unbounded in the kernel's centre-of-mass velocity by
+    /// 1e-9 of the velocity difference.
+    static constexpr double driver_mass_factor = 1e9;
+
+    /// Before the kernel (@p before): the drivers' records take their
+    /// velocity and the scaled mass; after it: their mass back, their
+    /// velocity again, and (with @p record_work) the work they did.
+    void
+    hold_drivers(const bool before, const bool record_work, const unsigned int n_owned_nodes);
+
+    const PrescribedVelocities<dim> *prescribed  = nullptr;
+    double                           driver_work = 0;
+
     const ContactParameters parameters;
     const bool              with_traction;
     const bool              with_position;

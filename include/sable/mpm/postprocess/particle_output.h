@@ -6,6 +6,7 @@
 
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
+#include <sable/mpm/postprocess/stress_smoothing.h>
 
 #include <string>
 #include <tuple>
@@ -21,7 +22,10 @@ namespace sable::mpm
    * volume, velocity, displacement (if the layout keeps the initial
    * position), F and the Cauchy stress as full 3 x 3 tensors (plane
    * strain: F_zz = 1, stress_zz as computed), pressure -tr(stress)/3, von
-   * Mises stress sqrt(3/2 s:s) and the material history.
+   * Mises stress sqrt(3/2 s:s) and the material history; with a
+   * StressSmoothing also the smoothed stress (tensor), its pressure, von
+   * Mises stress and in-plane principal stress difference
+   * sigma_1 - sigma_2 = sqrt((s_xx - s_yy)^2 + 4 s_xy^2).
    *
    * In VTU, velocity and displacement are vectors and F and stress 9-
    * component tensors (row-major), which ParaView shows as such. deal.II
@@ -36,14 +40,18 @@ namespace sable::mpm
   public:
     /// @p history_names: names of the layout's history slots (missing
     /// ones are called history_<i>); @p tensors: declare F and stress as
-    /// tensors (VTU) rather than 9 scalars each (HDF5).
+    /// tensors (VTU) rather than 9 scalars each (HDF5); @p smoothed: with
+    /// the smoothed stress fields.
     ParticleOutput(const ParticleLayout<dim> &     layout,
                    const std::vector<std::string> &history_names,
-                   const bool                      tensors);
+                   const bool                      tensors,
+                   const bool                      smoothed = false);
 
-    /// One patch per locally owned point of @p particles.
+    /// One patch per locally owned point of @p particles; @p smoothing
+    /// (computed for them) if the output has the smoothed fields.
     void
-    build_patches(const Particles::ParticleHandler<dim> &particles);
+    build_patches(const Particles::ParticleHandler<dim> &particles,
+                  const StressSmoothing<dim> *            smoothing = nullptr);
 
     /// Number of values per point (all components of all fields).
     unsigned int
@@ -79,7 +87,8 @@ namespace sable::mpm
 
     /// Component names, and where the first of each field sits.
     std::vector<std::string> names;
-    unsigned int             velocity, displacement, deformation, stress;
+    unsigned int             velocity, displacement, deformation, stress, smoothed_stress;
+    bool                     smoothed;
 
     std::vector<
       std::tuple<unsigned int,
