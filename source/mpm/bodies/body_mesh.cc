@@ -189,6 +189,26 @@ namespace sable::mpm
         result.pop_back();
       return result;
     }
+
+    /// Whether GridIn reads @p filename as a mesh of dimension @p other_dim
+    /// with cells: to tell a mesh of the other dimension from a bad file.
+    template <int other_dim>
+    bool
+    is_mesh_of_dimension(const std::string &filename, const typename GridIn<other_dim>::Format format)
+    {
+      try
+        {
+          std::ifstream           in(filename);
+          Triangulation<other_dim> triangulation;
+          GridIn<other_dim>        grid_in(triangulation);
+          grid_in.read(in, format);
+          return triangulation.n_active_cells() > 0;
+        }
+      catch (const std::exception &)
+        {
+          return false;
+        }
+    }
   } // namespace
 
   template <int dim>
@@ -335,6 +355,7 @@ namespace sable::mpm
       throw InputError("a readable mesh file (cannot open " + filename + ")");
 
     const std::string suffix = filename.substr(std::min(filename.size(), filename.rfind('.') + 1));
+    // the same enumerator in GridIn<2> and GridIn<3>
     typename GridIn<dim>::Format format;
     std::string                  format_name;
     if (suffix == "msh")
@@ -357,6 +378,10 @@ namespace sable::mpm
       }
     catch (const std::exception &error)
       {
+        constexpr int other_dim = 5 - dim;
+        if (is_mesh_of_dimension<other_dim>(
+              filename, static_cast<typename GridIn<other_dim>::Format>(static_cast<int>(format))))
+          throw InputError(what + "; this is a " + std::to_string(other_dim) + "D mesh");
         throw InputError(what + "; deal.II's GridIn cannot read it: " + short_message(error));
       }
     if (triangulation.n_active_cells() == 0)
