@@ -10,7 +10,7 @@ placed off the lattice, the points are exactly those an independent test of
 the L finds, and their volume is the L's area within the band the lattice
 cannot resolve. A 256-gon of triangles and quadrilaterals (a mixed mesh)
 seeds exactly the points of the built-in disk it approximates, on 1 and 2
-ranks. 3D: the unit cube as 8 hexahedra, as 8 hexahedra with a displaced
+ranks, and on a grid refined around body surfaces gets the disk's cells. 3D: the unit cube as 8 hexahedra, as 8 hexahedra with a displaced
 centre vertex (warped inner faces) and as 6 tetrahedra, scaled and moved
 off the lattice, seeds exactly the points of the built-in box. Bad files
 and entries stop the run before any work, naming the entry and value."""
@@ -146,6 +146,17 @@ for ranks in (0, 2):
     for axis in "xy":
         check_relative(f"{what}: the built-in disk's centre of mass {axis}", row[f"body0_{axis}"],
                        expected[f"body0_{axis}"], 1e-12)
+
+# the 'body surface' refinement of an adaptive grid sees the same surface:
+# the same cells and points as around the built-in disk
+adaptive = dict(scene(2, 10), **{"Mesh refinement/Criteria": "body surface", "Mesh refinement/Maximum level": 2})
+expected = run("polygon_refined_disk", adaptive, [disk])[2][0]
+row = run_mesh("polygon_refined", adaptive, mesh_body("polygon.msh", radius, centre, Velocity="1, 0"),
+               {"polygon.msh": polygon})
+check("256-gon on an adaptive grid: refined like the built-in disk (same cells, more than 100)",
+      row["cells"] == expected["cells"] > 100, f"{row['cells']:g}, disk {expected['cells']:g}")
+check("256-gon on an adaptive grid: the built-in disk's points", row["particles"] == expected["particles"],
+      f"{row['particles']:g}, disk {expected['particles']:g}")
 
 # ---- 3D: the unit cube, scaled by 0.3 and moved off the lattice, against
 # the built-in box -----------------------------------------------------------
