@@ -9,9 +9,9 @@ OUTPUT_DIR is a run's output directory (particles.pvd, statistics.csv); the
 picture goes to FILE (default: OUTPUT_DIR/snapshots.png). For each time the
 particle file written closest to it is shown. --grid draws the background
 grid's cells as refined at that time (the run's grid.pvd, written with
-'Output/Grid output = true'); --mesh draws the cells of a body's mesh file
-(Shape = mesh; give the body's 'Mesh scale' and 'Mesh translation') over
-the first snapshot. Needs Debian's python3-meshio and python3-matplotlib."""
+'Output/Grid output = true'); --mesh adds a first panel with the cells of
+a body's mesh file (Shape = mesh; give the body's 'Mesh scale' and 'Mesh
+translation') over the points of the first snapshot. Needs Debian's python3-meshio and python3-matplotlib."""
 import argparse
 import csv
 import os
@@ -113,10 +113,28 @@ def main():
         translation = [float(t) for t in args.mesh_translation.split(",")]
         body_mesh = cell_polygons(args.mesh, args.mesh_scale, translation)
 
-    figure = plt.figure(figsize=(3.6 * len(chosen), 6.0))
-    grid = figure.add_gridspec(2, len(chosen), height_ratios=[1.2, 1], hspace=0.3)
+    first = 1 if body_mesh else 0  # a first panel for the mesh file
+    figure = plt.figure(figsize=(3.6 * (len(chosen) + first), 6.0))
+    grid = figure.add_gridspec(2, len(chosen) + first, height_ratios=[1.2, 1], hspace=0.3)
+    if body_mesh:
+        # the mesh's cells over the points seeded in them (the first
+        # snapshot), the upper right quarter of its bounding box, where
+        # cells and points can be told apart
+        axes = figure.add_subplot(grid[0, 0])
+        axes.add_collection(PolyCollection(body_mesh, facecolors="none", edgecolors="crimson", linewidths=0.6))
+        positions = data[0][0]
+        axes.scatter(positions[:, 0], positions[:, 1], c="k", s=2, linewidths=0)
+        corners = np.concatenate(body_mesh)
+        low, high = corners.min(axis=0), corners.max(axis=0)
+        middle = (low + high) / 2
+        axes.set_xlim(middle[0], high[0] + 0.02 * (high[0] - low[0]))
+        axes.set_ylim(middle[1], high[1] + 0.02 * (high[1] - low[1]))
+        axes.set_aspect("equal")
+        axes.set_title(f"{os.path.basename(args.mesh)} and the points")
+        axes.set_xlabel("x [m]")
+        axes.set_ylabel("y [m]")
     for column, ((time, _), (positions, speeds, bodies)) in enumerate(zip(chosen, data)):
-        axes = figure.add_subplot(grid[0, column])
+        axes = figure.add_subplot(grid[0, column + first])
         if grids:
             axes.add_collection(PolyCollection(grids[column], facecolors="none", edgecolors="0.6",
                                                linewidths=0.4))
@@ -127,15 +145,12 @@ def main():
         else:
             axes.scatter(positions[:, 0], positions[:, 1], c=bodies % 20, s=size, vmin=0, vmax=19,
                          cmap="tab20", linewidths=0)
-        if column == 0 and body_mesh:
-            axes.add_collection(PolyCollection(body_mesh, facecolors="none", edgecolors="crimson",
-                                               linewidths=0.5))
         axes.set_xlim(lower[0] - 0.05, upper[0] + 0.05)
         axes.set_ylim(lower[1] - 0.05, upper[1] + 0.05)
         axes.set_aspect("equal")
         axes.set_title(f"t = {time:.2f} s")
         axes.set_xlabel("x [m]")
-        if column == 0:
+        if column + first == 0:
             axes.set_ylabel("y [m]")
     if args.color == "speed":
         figure.colorbar(shown, ax=figure.axes, label="speed [m/s]", shrink=0.8)
