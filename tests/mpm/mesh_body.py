@@ -183,6 +183,106 @@ for filename, text in (("cube_hex.msh", committed("cube_hex.msh")), ("cube_warpe
         check_relative(f"{what}: the built-in box's centre of mass {axis}", row[f"body0_{axis}"],
                        expected[f"body0_{axis}"], 1e-12)
 
+# ---- 3D: closed surfaces from STL files ---------------------------------------
+import itertools
+import struct
+
+
+def stl_ascii(triangles):
+    text = "solid test\n"
+    for t in triangles:
+        text += "  facet normal 0 0 0\n    outer loop\n"
+        text += "".join(f"      vertex {x!r} {y!r} {z!r}\n" for x, y, z in t)
+        text += "    endloop\n  endfacet\n"
+    return text + "endsolid test\n"
+
+
+def cube_triangles():
+    """The unit cube's 12 triangles, each face cut along a diagonal."""
+    triangles = []
+    for axis in range(3):
+        for side in (0, 1):
+            corners = []
+            for a, b in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                v = [0, 0, 0]
+                v[axis], v[(axis + 1) % 3], v[(axis + 2) % 3] = side, a, b
+                corners.append(tuple(float(c) for c in v))
+            triangles += [(corners[0], corners[1], corners[2]), (corners[0], corners[2], corners[3])]
+    return triangles
+
+
+# the cube on the lattice's sub-cell planes (0.1 + 0.3 = 0.4): many points
+# project onto the faces' diagonals and edges, where a ray test without a
+# consistent rule counts two triangles or none
+for name, shift_cube in (("aligned", (0.1, 0.1, 0.1)), ("off_lattice", shift)):
+    box_here = dict(box, **{"Lower corner": ", ".join(map(repr, shift_cube)),
+                            "Upper corner": ", ".join(repr(t + scale) for t in shift_cube)})
+    expected = run(f"stl_builtin_box_{name}", scene(3, N3), [box_here])[2][0]
+    row = run_mesh(f"stl_cube_{name}", scene(3, N3),
+                   mesh_body("cube.stl", scale, shift_cube, Velocity="1, 0, 0", **{"Particles per cell direction": K3}),
+                   {"cube.stl": stl_ascii(cube_triangles())})
+    what = f"3D cube.stl (ASCII), {name.replace('_', ' ')}"
+    check(f"{what}: the built-in box's points", row["particles"] == expected["particles"] == 12 ** 3,
+          f"{row['particles']:g}, box {expected['particles']:g}")
+    for axis in "xyz":
+        check_relative(f"{what}: the built-in box's centre of mass {axis}", row[f"body0_{axis}"],
+                       expected[f"body0_{axis}"], 1e-12)
+
+
+def icosphere(levels):
+    """Triangles of a sphere of radius 1: an icosahedron, each triangle cut
+    into four `levels` times, the new vertices pushed onto the sphere."""
+    p = (1 + 5 ** 0.5) / 2
+    v = [(-1, p, 0), (1, p, 0), (-1, -p, 0), (1, -p, 0), (0, -1, p), (0, 1, p), (0, -1, -p), (0, 1, -p),
+         (p, 0, -1), (p, 0, 1), (-p, 0, -1), (-p, 0, 1)]
+    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+         (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
+         (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    unit = lambda a: tuple(c / math.sqrt(sum(x * x for x in a)) for c in a)
+    triangles = [tuple(unit(v[i]) for i in t) for t in f]
+    for _ in range(levels):
+        finer = []
+        for a, b, c in triangles:
+            ab, bc, ca = (unit(tuple((x + y) / 2 for x, y in zip(m, n))) for m, n in ((a, b), (b, c), (c, a)))
+            finer += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+        triangles = finer
+    return triangles
+
+
+# a convex 1280-triangle sphere (binary STL) against an independent test:
+# inside every face's plane
+sphere = icosphere(3)
+radius, centre3 = 0.2, (0.5013, 0.4987, 0.5021)
+binary = b"binary STL of a sphere".ljust(80, b" ") + struct.pack("<I", len(sphere))
+for t in sphere:
+    binary += struct.pack("<12fH", 0, 0, 0, *[c for vertex in t for c in vertex], 0)
+planes = []
+for a, b, c in sphere:
+    a, b, c = (tuple(float(struct.unpack("<f", struct.pack("<f", x))[0]) for x in p) for p in (a, b, c))
+    n = [(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+         (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+         (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])]
+    planes.append((n, a))
+lattice3 = [(i + 0.5) / N3 / K3 for i in range(N3 * K3)]
+inside, clearance = 0, 1.0
+for x, y, z in itertools.product(lattice3, repeat=3):
+    u = [(q - o) / radius for q, o in zip((x, y, z), centre3)]
+    if sum(c * c for c in u) > 1 + 1e-6:  # outside the sphere the polyhedron is inscribed in
+        continue
+    distances = [sum(n_ * (u_ - a_) for n_, u_, a_ in zip(n, u, a)) / math.sqrt(sum(c * c for c in n))
+                 for n, a in planes]  # outward normals: inside means all <= 0
+    inside += max(distances) < 0
+    clearance = min(clearance, abs(max(distances)))
+check("STL sphere: no lattice point on a face plane", clearance > 1e-6, f"{clearance:.3g}")
+prepare("stl_sphere", {})
+with open(os.path.join(WORK, "stl_sphere", "meshes", "sphere.stl"), "wb") as f:
+    f.write(binary)
+row = run("stl_sphere", scene(3, N3),
+          [mesh_body("sphere.stl", radius, centre3, Velocity="1, 0, 0", **{"Particles per cell direction": K3})],
+          fresh=False)[2][0]
+check("STL sphere (binary, 1280 triangles): the points inside every face, found independently",
+      row["particles"] == inside, f"{row['particles']:g}, expected {inside}")
+
 # ---- a relative path is read from the parameter file's folder, whatever
 # the working directory --------------------------------------------------------
 name = "relative_path"
@@ -199,8 +299,12 @@ square = committed("l_shape.msh")
 bad = {
     "missing file": ("2", {"Mesh file": "meshes/part.msh"}, {}, ["Body 0/Mesh file = meshes/part.msh", "cannot open"]),
     "no file name": ("2", {"Mesh file": ""}, {}, ["Body 0/Mesh file = '", "name of a mesh file"]),
-    "unknown suffix": ("2", {"Mesh file": "meshes/part.stl"}, {"part.stl": "solid x\n"},
-                       ["Body 0/Mesh file = meshes/part.stl", "*.msh"]),
+    "unknown suffix": ("2", {"Mesh file": "meshes/part.obj"}, {"part.obj": "v 0 0 0\n"},
+                       ["Body 0/Mesh file = meshes/part.obj", "*.msh"]),
+    "STL in 2D": ("2", {"Mesh file": "meshes/part.stl"}, {"part.stl": stl_ascii(cube_triangles())},
+                  ["Body 0/Mesh file = meshes/part.stl", "2D volume mesh", "3D surface"]),
+    "open STL surface": ("3", {"Mesh file": "meshes/part.stl"}, {"part.stl": stl_ascii(cube_triangles()[1:])},
+                         ["Body 0/Mesh file = meshes/part.stl", "closed surface", "3 of its 18 edges"]),
     "not a mesh": ("2", {"Mesh file": "meshes/part.msh"}, {"part.msh": "this is not a mesh\n"},
                    ["Body 0/Mesh file = meshes/part.msh", "2D volume mesh", "cannot read it"]),
     "3D mesh in 2D": ("2", {"Mesh file": "meshes/cube_hex.msh"}, {"cube_hex.msh": committed("cube_hex.msh")},

@@ -4,6 +4,7 @@
 
 #include <sable/base/input_error.h>
 #include <sable/mpm/bodies/body_mesh.h>
+#include <sable/mpm/bodies/closed_surface.h>
 
 #include <algorithm>
 #include <cmath>
@@ -295,6 +296,21 @@ namespace sable::mpm
   }
 
   template <int dim>
+  void
+  BodyMesh<dim>::set_surface(const ClosedSurface &closed_surface)
+  {
+    if constexpr (dim == 3)
+      {
+        surface         = std::make_shared<const ClosedSurface>(closed_surface);
+        box             = surface->bounding_box();
+        total_measure   = surface->volume();
+        region_centroid = surface->centroid();
+      }
+    else
+      throw InputError("a 2D volume mesh; an STL file is a 3D surface");
+  }
+
+  template <int dim>
   bool
   BodyMesh<dim>::cell_contains(const unsigned int c, const Point<dim> &x) const
   {
@@ -320,6 +336,9 @@ namespace sable::mpm
   bool
   BodyMesh<dim>::contains(const Point<dim> &x) const
   {
+    if constexpr (dim == 3)
+      if (surface)
+        return surface->contains(x);
     unsigned int index = 0;
     for (int d = dim - 1; d >= 0; --d)
       {
@@ -339,6 +358,9 @@ namespace sable::mpm
   Point<dim>
   BodyMesh<dim>::top_point(const Tensor<1, dim> &gravity) const
   {
+    if constexpr (dim == 3)
+      if (surface)
+        return surface->top_point(gravity);
     Point<dim> top = vertices.empty() ? Point<dim>() : vertices[0];
     for (const Point<dim> &v : vertices)
       if (gravity * (v - top) < 0)
@@ -364,8 +386,20 @@ namespace sable::mpm
       format = GridIn<dim>::vtk, format_name = "VTK";
     else if (suffix == "inp" || suffix == "ucd")
       format = GridIn<dim>::ucd, format_name = "UCD";
+    else if (suffix == "stl" && dim == 3)
+      {
+        BodyMesh<dim> mesh;
+        Tensor<1, 3>  shift;
+        for (unsigned int d = 0; d < dim; ++d)
+          shift[d] = translation[d];
+        mesh.set_surface(read_stl(filename, scale, shift));
+        return mesh;
+      }
+    else if (suffix == "stl")
+      throw InputError("a 2D volume mesh (*.msh, *.vtk, *.inp, *.ucd); an STL file is a 3D surface");
     else
-      throw InputError("a file named *.msh (Gmsh), *.vtk (legacy VTK) or *.inp, *.ucd (UCD)");
+      throw InputError(std::string("a file named *.msh (Gmsh), *.vtk (legacy VTK), *.inp, *.ucd (UCD)") +
+                       (dim == 3 ? " or *.stl (a closed surface)" : ""));
 
     const std::string cells = dim == 2 ? "triangles or quadrilaterals" : "tetrahedra or hexahedra";
     const std::string what  = "a " + format_name + " file of a " + std::to_string(dim) +

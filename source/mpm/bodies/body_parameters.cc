@@ -172,10 +172,11 @@ namespace sable::mpm
                       "Shape = mesh: a volume mesh read with deal.II's GridIn, "
                       "Gmsh (.msh), legacy VTK (.vtk) or UCD (.inp, .ucd): "
                       "triangles and quadrilaterals in 2D, tetrahedra and "
-                      "hexahedra in 3D. Material points are seeded as for the "
+                      "hexahedra in 3D; or in 3D a closed surface, STL (.stl, "
+                      "ASCII or binary). Material points are seeded as for the "
                       "other shapes, at the sub-cell centres of the grid that "
-                      "lie in a cell of the mesh. A relative path is read from "
-                      "the parameter file's folder.");
+                      "lie in a cell of the mesh (inside the surface). A "
+                      "relative path is read from the parameter file's folder.");
     prm.declare_entry("Mesh scale",
                       "1",
                       Patterns::Double(),
@@ -262,7 +263,7 @@ namespace sable::mpm
                   points_file,
                   "a file of material points (Shape = points)");
     else if (shape == Shape::mesh)
-      check_input(mesh.n_cells() > 0 && mesh.measure() > 0,
+      check_input(mesh.measure() > 0,
                   path + "Mesh file",
                   mesh_file,
                   "a mesh of cells with a volume > 0 (Shape = mesh), read with read_mesh()");

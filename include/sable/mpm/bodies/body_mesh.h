@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,13 +14,16 @@ namespace sable::mpm
 {
   using namespace dealii;
 
+  class ClosedSurface;
+
   /**
    * The region of a body given as a volume mesh (Shape = mesh): the union of
    * its cells, triangles and quadrilaterals in 2D, tetrahedra and hexahedra
    * in 3D. A quadrilateral is the polygon of its four straight edges, a
    * hexahedron the trilinear image of the unit cube (as in deal.II's
    * MappingQ1). Cells are binned on a uniform grid over the bounding box so
-   * that contains() tests only the few cells near a point.
+   * that contains() tests only the few cells near a point. In 3D the
+   * region may instead be the inside of a closed surface (an STL file).
    */
   template <int dim>
   class BodyMesh
@@ -67,6 +71,10 @@ namespace sable::mpm
     void
     finish();
 
+    /// Make the region the inside of @p surface (3D only), instead of cells.
+    void
+    set_surface(const ClosedSurface &surface);
+
   private:
     /// cell c's vertices are vertices[cell_start[c] .. cell_start[c + 1])
     std::vector<Point<dim>>   vertices;
@@ -81,14 +89,18 @@ namespace sable::mpm
     Tensor<1, dim>                         bin_size;
     std::vector<std::vector<unsigned int>> bins;
 
+    /// the closed surface, if the region is given by one
+    std::shared_ptr<const ClosedSurface> surface;
+
     bool
     cell_contains(const unsigned int c, const Point<dim> &x) const;
   };
 
   /**
    * Read the volume mesh in @p filename with deal.II's GridIn (the format
-   * from the file's suffix: .msh Gmsh, .vtk legacy VTK, .inp or .ucd UCD)
-   * and map each vertex x to @p scale x + @p translation. A file that
+   * from the file's suffix: .msh Gmsh, .vtk legacy VTK, .inp or .ucd UCD),
+   * or in 3D the closed surface of an STL file (.stl, read_stl()), and map
+   * each vertex x to @p scale x + @p translation. A file that
    * cannot be opened, an unknown suffix, a file GridIn cannot read, a mesh
    * without cells of dimension @p dim and cells other than those BodyMesh
    * knows throw an InputError whose message is what is allowed instead
