@@ -12,8 +12,12 @@ cannot resolve. A 256-gon of triangles and quadrilaterals (a mixed mesh)
 seeds exactly the points of the built-in disk it approximates, on 1 and 2
 ranks, and on a grid refined around body surfaces gets the disk's cells. 3D: the unit cube as 8 hexahedra, as 8 hexahedra with a displaced
 centre vertex (warped inner faces) and as 6 tetrahedra, scaled and moved
-off the lattice, seeds exactly the points of the built-in box. Bad files
-and entries stop the run before any work, naming the entry and value."""
+off the lattice, seeds exactly the points of the built-in box; so does the
+cube as a 12-triangle STL surface, also with its faces on the lattice's
+sub-cell planes (points projecting onto its edges and diagonals); a binary
+STL icosphere seeds exactly the points inside all its face planes. Bad
+files and entries stop the run before any work, naming the entry and
+value."""
 import math
 import os
 import shutil
