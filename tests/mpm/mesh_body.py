@@ -75,8 +75,8 @@ centroid_units = (5 / 6, 5 / 6)  # of the three unit squares' centres
 for filename in ("l_shape.msh", "l_shape.inp", "l_shape.vtk"):
     # corners on lattice lines: the sub-cells of the points tile the L,
     # so volume and centroid are exact; rotation about the centroid gives
-    # zero momentum (about the bounding box's centre it would be
-    # M omega |c - c_box| = 0.12 * 1000 * 2 * 0.0333 = 8 kg m/s)
+    # zero momentum (about the bounding box's centre its y component would
+    # be M omega (c_x - c_box,x) = 120 kg * 2/s * 0.0333 m = 8 kg m/s)
     row = run_mesh("l_aligned_" + filename.replace(".", "_"), scene(2, N),
                    mesh_body(filename, scale, (0.1, 0.1), **{"Angular velocity": 2, "Velocity": "1, 0"}),
                    {filename: committed(filename)})
