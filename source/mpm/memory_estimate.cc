@@ -65,6 +65,8 @@ namespace sable::mpm
         if (body.shape == BodyParameters<dim>::Shape::box)
           for (unsigned int d = 0; d < dim; ++d)
             volume *= body.upper_corner[d] - body.lower_corner[d];
+        else if (body.shape == BodyParameters<dim>::Shape::mesh)
+          volume = body.mesh.measure();
         else
           volume = (dim == 2 ? M_PI : 4. / 3. * M_PI) * std::pow(body.radius, dim);
         const double points =

@@ -390,10 +390,14 @@ namespace sable::mpm
         prm.enter_subsection("Body " + std::to_string(b));
         BodyParameters<dim> body;
         body.parse_parameters(prm, "Body " + std::to_string(b) + "/");
+        const std::string folder = std::filesystem::path(filename).parent_path().string();
         if (body.shape == BodyParameters<dim>::Shape::points)
-          body.read_points(std::filesystem::path(filename).parent_path().string());
+          body.read_points(folder);
+        if (body.shape == BodyParameters<dim>::Shape::mesh)
+          body.read_mesh(folder, "Body " + std::to_string(b) + "/");
         locations.push_back(body.shape == BodyParameters<dim>::Shape::box    ? "Lower corner" :
                             body.shape == BodyParameters<dim>::Shape::points ? "Points file" :
+                            body.shape == BodyParameters<dim>::Shape::mesh   ? "Mesh file" :
                                                                                "Center");
         locations.back() += " = " + prm.get(locations.back());
         prm.leave_subsection();

@@ -19,7 +19,8 @@ namespace sable::mpm
       static const NamedChoice<Shape> choice{{"disk", Shape::disk},
                                              {"sphere", Shape::disk},
                                              {"box", Shape::box},
-                                             {"points", Shape::points}};
+                                             {"points", Shape::points},
+                                             {"mesh", Shape::mesh}};
       return choice;
     }
 
@@ -32,16 +33,37 @@ namespace sable::mpm
                                                {"conforming", Seeding::conforming}};
       return choice;
     }
+
+    /// @p file as given if absolute, else in @p folder
+    std::string
+    in_folder(const std::string &folder, const std::string &file)
+    {
+      const std::filesystem::path path(file);
+      return path.is_absolute() || folder.empty() ? file : (std::filesystem::path(folder) / path).string();
+    }
   } // namespace
 
   template <int dim>
   void
   BodyParameters<dim>::read_points(const std::string &folder)
   {
-    const std::filesystem::path path(points_file);
-    cloud = read_point_file<dim>(path.is_absolute() || folder.empty() ?
-                                   points_file :
-                                   (std::filesystem::path(folder) / path).string());
+    cloud = read_point_file<dim>(in_folder(folder, points_file));
+  }
+
+  template <int dim>
+  void
+  BodyParameters<dim>::read_mesh(const std::string &folder, const std::string &path)
+  {
+    check_input(mesh_scale > 0, path + "Mesh scale", mesh_scale, "a number > 0");
+    check_input(!mesh_file.empty(), path + "Mesh file", "", "the name of a mesh file (Shape = mesh)");
+    try
+      {
+        mesh = read_body_mesh<dim>(in_folder(folder, mesh_file), mesh_scale, mesh_translation);
+      }
+    catch (const InputError &error)
+      {
+        check_input(false, path + "Mesh file", mesh_file, error.what());
+      }
   }
 
   template <int dim>
@@ -52,6 +74,8 @@ namespace sable::mpm
       return center;
     if (shape == Shape::box)
       return Point<dim>((Tensor<1, dim>(lower_corner) + Tensor<1, dim>(upper_corner)) / 2.);
+    if (shape == Shape::mesh)
+      return mesh.centroid();
     Tensor<1, dim> sum;
     double         volume = 0;
     for (unsigned int i = 0; i < cloud.positions.size(); ++i)
@@ -79,6 +103,8 @@ namespace sable::mpm
       }
     if (shape == Shape::box)
       return {lower_corner, upper_corner};
+    if (shape == Shape::mesh)
+      return mesh.bounding_box();
     Point<dim> lo = center, hi = center;
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -96,6 +122,8 @@ namespace sable::mpm
       return false;
     if (shape == Shape::disk)
       return (x - center).norm_square() <= radius * radius;
+    if (shape == Shape::mesh)
+      return mesh.contains(x);
     for (unsigned int d = 0; d < dim; ++d)
       if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
         return false;
@@ -115,6 +143,8 @@ namespace sable::mpm
             top = x;
         return top;
       }
+    if (shape == Shape::mesh)
+      return mesh.top_point(gravity);
     if (shape == Shape::disk)
       {
         const double g = gravity.norm();
@@ -134,8 +164,9 @@ namespace sable::mpm
     prm.declare_entry("Shape",
                       "disk",
                       shapes<dim>().pattern(),
-                      "disk (2D) or sphere (3D), box, or points (one material "
-                      "point per row of 'Points file').");
+                      "disk (2D) or sphere (3D), box, points (one material "
+                      "point per row of 'Points file') or mesh (the cells of "
+                      "'Mesh file').");
     prm.declare_entry("Points file",
                       "",
                       Patterns::Anything(),
@@ -145,6 +176,27 @@ namespace sable::mpm
                       "velocity' about the volume-weighted centroid), then one "
                       "row per material point, its mass density times volume. "
                       "A relative path is read from the parameter file's folder.");
+    prm.declare_entry("Mesh file",
+                      "",
+                      Patterns::Anything(),
+                      "Shape = mesh: a volume mesh read with deal.II's GridIn, "
+                      "Gmsh (.msh), legacy VTK (.vtk) or UCD (.inp, .ucd): "
+                      "triangles and quadrilaterals in 2D, tetrahedra and "
+                      "hexahedra in 3D; or in 3D a closed surface, STL (.stl, "
+                      "ASCII or binary). Material points are seeded as for the "
+                      "other shapes, at the sub-cell centres of the grid that "
+                      "lie in a cell of the mesh (inside the surface). A "
+                      "relative path is read from the parameter file's folder.");
+    prm.declare_entry("Mesh scale",
+                      "1",
+                      Patterns::Double(),
+                      "Shape = mesh: factor (> 0) on the mesh's coordinates, "
+                      "e.g. 0.001 for a mesh in mm; applied before 'Mesh "
+                      "translation'.");
+    prm.declare_entry("Mesh translation",
+                      zero,
+                      Patterns::List(Patterns::Double(), dim, dim),
+                      "Shape = mesh: shift of the (scaled) mesh, m.");
     prm.declare_entry("Center", zero, Patterns::List(Patterns::Double(), dim, dim), "Disk/sphere centre, m.");
     prm.declare_entry("Radius", "0", Patterns::Double(), "Disk/sphere radius, m, > 0.");
     prm.declare_entry("Lower corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box lower corner, m.");
@@ -222,6 +274,9 @@ namespace sable::mpm
     upper_corner = Point<dim>(read_vector<dim>(prm, "Upper corner", path));
     particles_per_direction = prm.get_integer("Particles per cell direction");
     points_file             = prm.get("Points file");
+    mesh_file               = prm.get("Mesh file");
+    mesh_scale              = prm.get_double("Mesh scale");
+    mesh_translation        = read_vector<dim>(prm, "Mesh translation", path);
     material.parse_parameters(prm, path);
     velocity = read_vector<dim>(prm, "Velocity", path);
     prescribed = !Utilities::trim(prm.get("Prescribed velocity")).empty();
@@ -251,6 +306,11 @@ namespace sable::mpm
                   path + "Points file",
                   points_file,
                   "a file of material points (Shape = points)");
+    else if (shape == Shape::mesh)
+      check_input(mesh.measure() > 0,
+                  path + "Mesh file",
+                  mesh_file,
+                  "a mesh of cells with a volume > 0 (Shape = mesh), read with read_mesh()");
     else
       for (unsigned int d = 0; d < dim; ++d)
         check_input(upper_corner[d] > lower_corner[d],

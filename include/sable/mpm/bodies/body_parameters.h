@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <sable/mpm/bodies/body_mesh.h>
 #include <sable/mpm/bodies/point_file.h>
 #include <sable/mpm/materials/material_parameters.h>
 
@@ -24,7 +25,8 @@ namespace sable::mpm
     {
       disk, ///< a disk in 2D, a sphere in 3D
       box,
-      points ///< material points read from 'Points file'
+      points, ///< material points read from 'Points file'
+      mesh    ///< the cells of the volume mesh in 'Mesh file'
     };
     Shape        shape  = Shape::disk;
     /// Where a disk's or sphere's points go.
@@ -42,6 +44,12 @@ namespace sable::mpm
     /// Shape = points: the file (as given, and as found) and its points
     std::string     points_file;
     PointCloud<dim> cloud;
+    /// Shape = mesh: the file as given, the map x -> scale x + translation
+    /// of its vertices, and the mesh
+    std::string    mesh_file;
+    double         mesh_scale = 1.;
+    Tensor<1, dim> mesh_translation;
+    BodyMesh<dim>  mesh;
 
     MaterialParameters material;
 
@@ -67,15 +75,22 @@ namespace sable::mpm
     void
     read_points(const std::string &folder);
 
+    /// Shape = mesh: read the mesh file, found relative to @p folder unless
+    /// its path is absolute. A missing or unreadable file, a mesh of
+    /// another dimension or a scale <= 0 is an InputError naming
+    /// @p path ("Body 0/") and the entry.
+    void
+    read_mesh(const std::string &folder, const std::string &path);
+
     /// Centre of rotation of 'Angular velocity': the disk's or box's
-    /// centre, the volume-weighted centroid of points.
+    /// centre, the volume-weighted centroid of points or of a mesh.
     Point<dim>
     centre() const;
 
     /// Axis-aligned bounding box of the shape.
     std::pair<Point<dim>, Point<dim>>
     bounding_box() const;
-    /// Whether @p x is inside a disk or box (never for points).
+    /// Whether @p x is inside a disk, box or mesh (never for points).
     bool
     contains(const Point<dim> &x) const;
     /// The point of the shape lowest in the potential −g·x (where p = 0).
