@@ -4,8 +4,10 @@
 # Scene: 64 elastic disks (R = 0.05 m, 8 cells per diameter, 2x2 points per
 # cell) in a square lattice, each touching its neighbours, on a fixed floor
 # under gravity, 2D, MUSL, one thread, output off, 20 steps (or the number
-# given). Variants: the defaults, each contact option changed alone, and
-# contact 'none' (one velocity field: the single-field step).
+# given). Variants: the defaults, each contact option changed alone, the
+# disks seeded conforming, the floor a friction wall (either contact
+# criterion), and contact 'none' (one velocity field: the single-field
+# step).
 # Prints the instructions of Simulator::advance() (the steps) per variant
 # and its ratio to the default.
 # Usage: contrib/benchmarks/contact_options/callgrind.sh [build dir] [steps]
@@ -17,7 +19,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 source "$root/contrib/benchmarks/callgrind_functions.sh"
 
-scene() { # contact entries
+scene() { # contact entries, body entries, boundary entries
   cat <<PRM
 set Dimension = 2
 set Output directory = $work/out
@@ -34,6 +36,7 @@ subsection Grid
 end
 subsection Boundary conditions
   set Types = 2: fixed
+$3
 end
 subsection Output
   set Progress interval = 1000000
@@ -47,7 +50,7 @@ PRM
   for i in $(seq 0 63); do
     printf 'subsection Body %d\n  set Shape = disk\n  set Radius = 0.05\n' "$i"
     awk -v i="$i" 'BEGIN { printf "  set Center = %g, %g\n", 0.1 + 0.1 * (i % 8), 0.05 + 0.1 * int(i / 8) }'
-    printf "  set Particles per cell direction = 2\n  set Young's modulus = 1e7\n  set Density = 1000\nend\n"
+    printf "  set Particles per cell direction = 2\n  set Young's modulus = 1e7\n  set Density = 1000\n%s\nend\n" "$2"
   done
 }
 
@@ -57,11 +60,14 @@ variants=("defaults|"
           "Nodes with three or more bodies = centre of mass|  set Nodes with three or more bodies = centre of mass"
           "Model = bardenhagen 2000|  set Model = bardenhagen 2000"
           "Friction coefficient = 0|  set Friction coefficient = 0"
+          "Seeding = conforming||  set Seeding = conforming"
+          "floor: friction wall, surface position|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3"
+          "floor: friction wall, material|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3\n  set Friction wall contact = material"
           "Model = none (single field)|  set Model = none")
 reference=0
 for variant in "${variants[@]}"; do
-  name="${variant%%|*}"
-  scene "${variant#*|}" > "$work/scene.prm"
+  IFS='|' read -r name contact_entries body_entries boundary_entries <<< "$variant"
+  scene "$contact_entries" "$body_entries" "$(printf '%b' "$boundary_entries")" > "$work/scene.prm"
   rm -rf "$work/out"
   callgrind_run "$work/callgrind.out" "$work/log" "$build/sable" "$work/scene.prm" ||
     { echo "$name: $(grep -m1 'sable:' "$work/log")"; continue; }
