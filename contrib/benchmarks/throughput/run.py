@@ -13,8 +13,8 @@ the whole number of cells per direction whose points come closest to it.
 Per run it prints the time loop's wall time ('Finished ... s wall time',
 setup excluded, the statistics of the first and last step included), ns
 per particle-step, the split per phase (the program's TimerOutput
-sections; 'other' is the rest of the loop: the rebuild of the list of
-cells with points after a sort, the time step, the progress line), the
+sections; 'other' is the rest of the loop: the time step, the checks
+between steps, the progress line), the
 peak resident set size of the sable process (getrusage's ru_maxrss of the
 child, what `/usr/bin/time -v` prints as 'Maximum resident set size') and
 that per point, and the load average before the run (the machine may be
@@ -41,10 +41,11 @@ FLOOR_PRM = os.path.join(HERE, "floor_100k.prm")
 DEFAULT_STEPS = {"floor": 1000, "box": 200}
 
 # top-level TimerOutput sections of the step, in the order of the step;
-# sections named '... (in ...)' are parts of another and not summed
-PHASES = ["particles to grid", "grid update and boundaries", "grid to particles",
-          "stress update", "sort particles", "statistics"]
-SHORT = {"particles to grid": "P2G", "grid update and boundaries": "grid",
+# sections named '... (in ...)' are parts of another and not summed; a
+# section absent from a log (an older sable) counts 0 s
+PHASES = ["list cells with points", "particles to grid", "grid update and boundaries",
+           "grid to particles", "stress update", "sort particles", "statistics"]
+SHORT = {"list cells with points": "cells", "particles to grid": "P2G", "grid update and boundaries": "grid",
          "grid to particles": "G2P", "stress update": "stress", "sort particles": "sort",
          "statistics": "stats", "other": "other"}
 
