@@ -17,14 +17,15 @@ sections; 'other' is the rest of the loop: the time step, the checks
 between steps, the progress line), the
 peak resident set size of the sable process (getrusage's ru_maxrss of the
 child, what `/usr/bin/time -v` prints as 'Maximum resident set size') and
-that per point, and the load average before the run (the machine may be
-shared). At the end: a Markdown table of all runs, the speed-up of each
+that per point, and the load average and idle CPU (over one second)
+before the run: the machine may be shared. At the end: a Markdown table of all runs, the speed-up of each
 phase from 1 to 2 threads, and whether statistics.csv is identical for
 every thread count (it must be; the times compare the same results).
 
 Usage: contrib/benchmarks/throughput/run.py [--sizes 10k 100k 400k 3d-260k]
        [--threads 1 2] [--steps 1000] [--repetitions 1] [--problem floor]
-       [--build build] [--work DIR] [--json FILE] [--set 'Sec/Entry=value' ...]
+       [--build build] [--work DIR] [--json FILE] [--quiet-wait SECONDS]
+       [--set 'Sec/Entry=value' ...]
 """
 import argparse
 import json
@@ -34,6 +35,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", "..", ".."))
@@ -151,6 +153,29 @@ def points_label(label):
     return label.split("-")[-1]
 
 
+def idle_percent():
+    """Idle CPU time of all cores over the next second, in per cent."""
+    def sample():
+        with open("/proc/stat") as f:
+            ticks = [int(x) for x in f.readline().split()[1:9]]
+        return ticks[3], sum(ticks)
+    idle0, total0 = sample()
+    time.sleep(1)
+    idle1, total1 = sample()
+    return 100 * (idle1 - idle0) / max(total1 - total0, 1)
+
+
+def wait_quiet(seconds):
+    """On a shared machine: wait up to @p seconds for a second with at
+    least 90% idle CPU; the idle percentage last seen."""
+    start = time.time()
+    idle = idle_percent()
+    while idle < 90 and time.time() - start < seconds:
+        time.sleep(4)
+        idle = idle_percent()
+    return idle
+
+
 def run_case(args, case, threads, repetition, work):
     dim, target, label = case
     name = f"{args.problem}-{dim}d-{points_label(label)}-t{threads}-r{repetition}"
@@ -161,6 +186,7 @@ def run_case(args, case, threads, repetition, work):
         write_scene(sets, os.path.join(work, name + ".prm"))
     for s in args.set:
         command += ["--set", s]
+    idle = wait_quiet(args.quiet_wait)
     load = open("/proc/loadavg").read().split()[0]
     log_path = os.path.join(work, name + ".log")
     with open(log_path, "w") as log:
@@ -184,7 +210,7 @@ def run_case(args, case, threads, repetition, work):
               "initialize_seconds": r["sections"].get("initialize", 0.0),
               "peak_rss_kib": usage.ru_maxrss,
               "kib_per_point": usage.ru_maxrss / r["points"],
-              "load_before": float(load),
+              "load_before": float(load), "idle_before": idle,
               "statistics": open(os.path.join(out, "statistics.csv")).read()}
     return result
 
@@ -193,7 +219,7 @@ def print_run(r):
     phases = ", ".join(f"{p} {s:.3g} s ({100 * s / r['loop_seconds']:.0f}%)"
                        for p, s in r["phases_seconds"].items())
     print(f"{r['case']}: {r['points']:,} points, {r['cells']:,} cells, {r['threads']} thread(s), "
-          f"run {r['repetition']}, load {r['load_before']:.2f} before: {r['steps']} steps "
+          f"run {r['repetition']}, load {r['load_before']:.2f} and {r['idle_before']:.0f}% idle before: {r['steps']} steps "
           f"(sort in {r['sorts']}) in {r['loop_seconds']:.3g} s, "
           f"{r['ns_per_particle_step']:.0f} ns per particle-step, peak RSS "
           f"{r['peak_rss_kib'] / 1024:.0f} MiB = {r['kib_per_point']:.2f} KiB per point\n"
@@ -202,13 +228,13 @@ def print_run(r):
 
 def print_tables(results):
     names = list(results[0]["phases_seconds"])
-    print("\n| case | points | threads | run | load | sorts/steps | loop s | ns/particle-step | "
+    print("\n| case | points | threads | run | load, idle | sorts/steps | loop s | ns/particle-step | "
           + " | ".join(f"{SHORT[p]} ns" for p in names) + " | peak RSS MiB | KiB/point |")
     print("|" + "---|" * (12 + len(names) - 2))
     for r in results:
         per = 1e9 / (r["points"] * r["steps"])
         print(f"| {r['case']} | {r['points']:,} | {r['threads']} | {r['repetition']} | "
-              f"{r['load_before']:.1f} | {r['sorts']}/{r['steps']} | {r['loop_seconds']:.3g} | "
+              f"{r['load_before']:.1f}, {r['idle_before']:.0f}% | {r['sorts']}/{r['steps']} | {r['loop_seconds']:.3g} | "
               f"**{r['ns_per_particle_step']:.0f}** | "
               + " | ".join(f"{per * r['phases_seconds'][p]:.0f}" for p in names)
               + f" | {r['peak_rss_kib'] / 1024:.0f} | {r['kib_per_point']:.2f} |")
@@ -260,6 +286,9 @@ def main():
                         help="build directory holding the sable program (default: build/)")
     parser.add_argument("--work", help="directory for the runs' outputs and logs, kept "
                         "(default: a temporary directory, removed at the end)")
+    parser.add_argument("--quiet-wait", type=float, default=0, metavar="SECONDS",
+                        help="before each run wait up to this long for a second with at "
+                        "least 90%% idle CPU (default 0: just measure it)")
     parser.add_argument("--json", help="write every run's numbers to this file")
     parser.add_argument("--set", action="append", default=[], metavar="'Sec/Entry=value'",
                         help="passed on to every run (e.g. 'Solver/Update scheme=usl')")
