@@ -36,24 +36,33 @@ namespace sable::mpm
     n_owned_cells = cells.size();
     collect(particle_handler.begin_ghost(), particle_handler.end_ghost(), false);
 
-    // the colouring's blocks, with their empty cells and empty blocks left out
+    // the colouring's blocks, with their empty cells and empty blocks left
+    // out: this walks every cell of the colouring (most of them empty in
+    // a sparse scene), so the colours are filtered concurrently; each
+    // writes only its own lists, which do not depend on the threads
     colours.resize(colouring.get_colours().size());
-    for (unsigned int k = 0; k < colours.size(); ++k)
-      {
-        const auto &all    = colouring.get_colours()[k];
-        Colour &    colour = colours[k];
-        colour.cells.clear();
-        colour.block_start.assign(1, 0);
-        for (unsigned int b = 0; b + 1 < all.block_start.size(); ++b)
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(colours.size()),
+      [&](const unsigned int first, const unsigned int end) {
+        for (unsigned int k = first; k < end; ++k)
           {
-            for (unsigned int c = all.block_start[b]; c < all.block_start[b + 1]; ++c)
-              if (const unsigned int s = slot[all.cell_indices[c]];
-                  s != numbers::invalid_unsigned_int)
-                colour.cells.push_back(s);
-            if (colour.cells.size() > colour.block_start.back())
-              colour.block_start.push_back(colour.cells.size());
+            const auto &all    = colouring.get_colours()[k];
+            Colour &    colour = colours[k];
+            colour.cells.clear();
+            colour.block_start.assign(1, 0);
+            for (unsigned int b = 0; b + 1 < all.block_start.size(); ++b)
+              {
+                for (unsigned int c = all.block_start[b]; c < all.block_start[b + 1]; ++c)
+                  if (const unsigned int s = slot[all.cell_indices[c]];
+                      s != numbers::invalid_unsigned_int)
+                    colour.cells.push_back(s);
+                if (colour.cells.size() > colour.block_start.back())
+                  colour.block_start.push_back(colour.cells.size());
+              }
           }
-      }
+      },
+      1);
   }
 
   template <int dim>

@@ -381,7 +381,10 @@ namespace sable::mpm
       }
     // unless the particle container is as the last step left it
     if (!particle_cells_current)
-      particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
+      {
+        TimerOutput::Scope scope(timer, "list cells with points");
+        particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
+      }
     particle_cells_current = false;
     scatter_momenta_and_forces();
     update_nodal_velocities();

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Strong scaling from one to two cores, by MPI ranks and by threads:
-#  - MPM: a linear-elastic box filling the grid (as throughput/run.sh), 2D
+#  - MPM: a linear-elastic box filling the grid (as throughput/run.py --problem box), 2D
 #    256^2 cells and 3D 32^3 cells with 2^dim points per cell (262,144
 #    points), 50 steps, output off; wall time of the time loop for
 #    1 rank x 1 thread, 2 ranks x 1 thread, 1 rank x 2 threads, the triple

@@ -3,7 +3,7 @@
 # alternating (1, 2, 1, 2, ...): the TimerOutput sections of the phases
 # that run threaded and the time loop, in seconds, for
 #  - box:  a linear-elastic box filling a 2D grid of 256^2 cells, 2x2
-#          points per cell (262,144 points), slip walls, 50 steps (as run.sh);
+#          points per cell (262,144 points), slip walls, 50 steps (as ../throughput/run.py --problem box);
 #  - pile: the same grid and points split into 32 x 32 square grains (8 x 8
 #          cells each) that tile it, each with its own velocity (contact
 #          nodes between all neighbours, nodes with up to four bodies),
