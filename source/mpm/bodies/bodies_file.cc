@@ -72,9 +72,13 @@ namespace sable::mpm
         }
     wall_start_time = prm.get_double("Wall velocity start time");
     check_input(wall_start_time >= 0, path + "Wall velocity start time", wall_start_time, "a number >= 0 (s)");
-    body_template.parse_template_parameters(prm, path);
-    body_template.radius = 1; // checked per grain
-    body_template.check(path);
+    // the template's entries matter (and are checked) only with a file
+    if (!file.empty())
+      {
+        body_template.parse_template_parameters(prm, path);
+        body_template.radius = 1; // each grain's is checked as it is read
+        body_template.check(path);
+      }
   }
 
   template <int dim>
