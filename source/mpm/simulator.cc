@@ -90,7 +90,7 @@ namespace sable::mpm
           for (unsigned int d = 0; d < dim; ++d)
             check_input(body_box.first[d] >= box.get_boundary_points().first[d] - 1e-12 &&
                           body_box.second[d] <= box.get_boundary_points().second[d] + 1e-12,
-                        body.name(b),
+                        body.label(b),
                         to_string(body_box.first) + " - " + to_string(body_box.second),
                         "a body inside the grid " + to_string(box.get_boundary_points().first) +
                           " - " + to_string(box.get_boundary_points().second));
@@ -237,7 +237,7 @@ namespace sable::mpm
       Utilities::MPI::sum(per_body, communicator, per_body);
       for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
         check_input(per_body[b] > 0,
-                    parameters.bodies[b].name(b),
+                    parameters.bodies[b].label(b),
                     "(no material point)",
                     "a body large enough to hold at least one material point "
                     "on this grid");

@@ -80,11 +80,20 @@ namespace sable::mpm
     /// else e.g. "pack.csv, line 12: ").
     std::string origin;
 
-    /// origin, or "Body <b>/" for the body of index @p b.
+    /// The prefix of the body's entries in messages: origin, or
+    /// "Body <b>/" for the body of index @p b.
     std::string
     name(const unsigned int b) const
     {
       return origin.empty() ? "Body " + std::to_string(b) + "/" : origin;
+    }
+
+    /// The body itself in messages: "Body <b>" or "pack.csv, line 12".
+    std::string
+    label(const unsigned int b) const
+    {
+      const std::string prefix = name(b);
+      return prefix.substr(0, prefix.find_last_not_of(":/ ") + 1);
     }
 
     /// Shape = points: read the points file, found relative to @p folder
