@@ -4,6 +4,7 @@
 #include <sable/base/input_error.h>
 #include <sable/base/parameter_file.h>
 #include <sable/base/named_choice.h>
+#include <sable/mpm/bodies/bodies_file.h>
 #include <sable/mpm/parameter_tools.h>
 #include <sable/mpm/parameters.h>
 
@@ -40,9 +41,10 @@ namespace sable::mpm
                       "sable.lock).");
     prm.declare_entry("Number of bodies",
                       "1",
-                      Patterns::Integer(1, 1000000),
+                      Patterns::Integer(0, 1000000),
                       "Bodies are described in subsections 'Body 0', "
-                      "'Body 1', ...");
+                      "'Body 1', ...; the bodies of 'Bodies file/File' come "
+                      "after them. At least one body in all.");
     prm.declare_entry("Gravity",
                       zero,
                       Patterns::List(Patterns::Double(), dim, dim),
@@ -239,6 +241,10 @@ namespace sable::mpm
                       "and counted); otherwise leaving stops the run.");
     prm.leave_subsection();
 
+    prm.enter_subsection("Bodies file");
+    BodiesFile<dim>::declare_parameters(prm);
+    prm.leave_subsection();
+
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
         prm.enter_subsection("Body " + std::to_string(b));
@@ -274,7 +280,10 @@ namespace sable::mpm
     check_input(p.energy_drift_limit > 0,
                 "Output/Energy drift limit", p.energy_drift_limit, "a number > 0");
     check_input(p.progress_interval >= 1, "Output/Progress interval", p.progress_interval, "an integer >= 1");
-    check_input(!p.bodies.empty(), "Number of bodies", 0, "at least one body");
+    check_input(!p.bodies.empty(),
+                "Number of bodies",
+                0,
+                "at least one body (or the bodies of 'Bodies file/File')");
 #ifndef DEAL_II_WITH_HDF5
     check_input(p.output_format != OutputFormat::hdf5,
                 "Output/Output format", "hdf5",
@@ -282,7 +291,7 @@ namespace sable::mpm
 #endif
     BoundaryParameters<dim>::check(p.boundaries);
     for (unsigned int b = 0; b < p.bodies.size(); ++b)
-      p.bodies[b].check("Body " + std::to_string(b) + "/");
+      p.bodies[b].check(p.bodies[b].name(b));
     p.refinement.check();
   }
 
@@ -361,8 +370,19 @@ namespace sable::mpm
     }
     prm.leave_subsection();
 
+    // the bodies of a bodies file come after the n_bodies of 'Body k'
+    const std::string folder = std::filesystem::path(filename).parent_path().string();
+    std::vector<BodyParameters<dim>> file_bodies;
+    {
+      prm.enter_subsection("Bodies file");
+      BodiesFile<dim> bodies_file;
+      bodies_file.parse_parameters(prm);
+      prm.leave_subsection();
+      file_bodies = bodies_file.create_bodies(folder, grid.lower_corner, grid.upper_corner);
+    }
+
     prm.enter_subsection("Contact");
-    p.contact.parse_parameters(prm, n_bodies);
+    p.contact.parse_parameters(prm, n_bodies + file_bodies.size());
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh refinement");
@@ -390,7 +410,6 @@ namespace sable::mpm
         prm.enter_subsection("Body " + std::to_string(b));
         BodyParameters<dim> body;
         body.parse_parameters(prm, "Body " + std::to_string(b) + "/");
-        const std::string folder = std::filesystem::path(filename).parent_path().string();
         if (body.shape == BodyParameters<dim>::Shape::points)
           body.read_points(folder);
         if (body.shape == BodyParameters<dim>::Shape::mesh)
@@ -403,11 +422,13 @@ namespace sable::mpm
         prm.leave_subsection();
         p.bodies.push_back(body);
       }
+    p.bodies.insert(p.bodies.end(), file_bodies.begin(), file_bodies.end());
     check_parameters(p);
     p.scene_entries = parameter_entries(prm);
 
     // every body inside the grid (the grid is the scene's, not a parameter
-    // of the Simulator, which checks its own triangulation)
+    // of the Simulator, which checks its own triangulation); the bodies of
+    // a file were checked as they were made
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
         const auto box = p.bodies[b].bounding_box();

@@ -77,16 +77,20 @@ namespace sable::mpm
   Simulator<dim>::setup_models()
   {
     check_parameters(parameters);
-    // every body must lie inside the grid
+    // every body must lie inside the grid (a grain held by a face of it:
+    // its centre)
     {
       const auto box = GridTools::compute_bounding_box(triangulation);
       for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
         {
-          const auto body_box = parameters.bodies[b].bounding_box();
+          const auto &body     = parameters.bodies[b];
+          auto        body_box = body.bounding_box();
+          if (body.clipped_by_grid)
+            body_box = {body.centre(), body.centre()};
           for (unsigned int d = 0; d < dim; ++d)
             check_input(body_box.first[d] >= box.get_boundary_points().first[d] - 1e-12 &&
                           body_box.second[d] <= box.get_boundary_points().second[d] + 1e-12,
-                        "Body " + std::to_string(b),
+                        body.label(b),
                         to_string(body_box.first) + " - " + to_string(body_box.second),
                         "a body inside the grid " + to_string(box.get_boundary_points().first) +
                           " - " + to_string(box.get_boundary_points().second));
@@ -153,9 +157,13 @@ namespace sable::mpm
           std::filesystem::create_directories(parameters.output_directory);
         MPI_Barrier(communicator);
       }
+    std::vector<unsigned int> bodies_with_columns;
+    for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
+      if (parameters.bodies[b].statistics_columns)
+        bodies_with_columns.push_back(b);
     statistics_file = std::make_unique<StatisticsFile<dim>>(
       parameters.output_directory + "/statistics.csv",
-      parameters.bodies.size(),
+      bodies_with_columns,
       contact != nullptr,
       parameters.contact.reported_pairs,
       write && Utilities::MPI::this_mpi_process(communicator) == 0,
@@ -229,7 +237,7 @@ namespace sable::mpm
       Utilities::MPI::sum(per_body, communicator, per_body);
       for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
         check_input(per_body[b] > 0,
-                    "Body " + std::to_string(b),
+                    parameters.bodies[b].label(b),
                     "(no material point)",
                     "a body large enough to hold at least one material point "
                     "on this grid");

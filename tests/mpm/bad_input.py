@@ -52,7 +52,8 @@ for name, entries, body_changes, words in cases:
         f.write("previous run\n")
     e = dict(good_entries, **entries)
     e["Output directory"] = "output"
-    bodies = [dict(good_body, **body_changes)]
+    # no bodies at all: neither 'Body k' subsections nor a bodies file
+    bodies = [] if entries.get("Number of bodies") == 0 else [dict(good_body, **body_changes)]
     text = prm_text(e, bodies)
     if "Number of bodies" in entries:
         text = text.replace("set Number of bodies = 1\n", "")

@@ -201,6 +201,30 @@ namespace sable::mpm
     prm.declare_entry("Radius", "0", Patterns::Double(), "Disk/sphere radius, m, > 0.");
     prm.declare_entry("Lower corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box lower corner, m.");
     prm.declare_entry("Upper corner", zero, Patterns::List(Patterns::Double(), dim, dim), "Box upper corner, m.");
+    prm.declare_entry("Prescribed velocity",
+                      "",
+                      Patterns::Anything(),
+                      "Empty (a free body), or m/s (" + std::to_string(dim) +
+                        " numbers): the body is a rigid driver, e.g. a "
+                        "loading pin; all its points move with this velocity "
+                        "from 'Prescribed velocity start time' on and stay "
+                        "at rest before, whatever the forces on them, and "
+                        "the other bodies meet it through contact as a body "
+                        "of unbounded mass (a contact model is needed). Its "
+                        "stress stays as seeded. The work it does counts as "
+                        "boundary work in the energy balance.");
+    prm.declare_entry("Prescribed velocity start time",
+                      "0",
+                      Patterns::Double(),
+                      "s, >= 0: when the prescribed velocity sets in (a step).");
+    declare_template_parameters(prm);
+  }
+
+  template <int dim>
+  void
+  BodyParameters<dim>::declare_template_parameters(ParameterHandler &prm)
+  {
+    const std::string zero = zero_vector(dim);
     prm.declare_entry("Particles per cell direction",
                       "2",
                       Patterns::Integer(0),
@@ -221,22 +245,6 @@ namespace sable::mpm
                       "(doc/validation.md).");
     MaterialParameters::declare_parameters(prm);
     prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
-    prm.declare_entry("Prescribed velocity",
-                      "",
-                      Patterns::Anything(),
-                      "Empty (a free body), or m/s (" + std::to_string(dim) +
-                        " numbers): the body is a rigid driver, e.g. a "
-                        "loading pin; all its points move with this velocity "
-                        "from 'Prescribed velocity start time' on and stay "
-                        "at rest before, whatever the forces on them, and "
-                        "the other bodies meet it through contact as a body "
-                        "of unbounded mass (a contact model is needed). Its "
-                        "stress stays as seeded. The work it does counts as "
-                        "boundary work in the energy balance.");
-    prm.declare_entry("Prescribed velocity start time",
-                      "0",
-                      Patterns::Double(),
-                      "s, >= 0: when the prescribed velocity sets in (a step).");
     prm.declare_entry("Angular velocity",
                       dim == 2 ? "0" : "0, 0, 0",
                       Patterns::List(Patterns::Double(), dim == 2 ? 1 : 3, dim == 2 ? 1 : 3),
@@ -267,22 +275,29 @@ namespace sable::mpm
   BodyParameters<dim>::parse_parameters(ParameterHandler &prm, const std::string &path)
   {
     shape        = shapes<dim>().value(prm.get("Shape"));
-    seeding      = seedings<dim>().value(prm.get("Seeding"));
     center       = Point<dim>(read_vector<dim>(prm, "Center", path));
     radius       = prm.get_double("Radius");
     lower_corner = Point<dim>(read_vector<dim>(prm, "Lower corner", path));
     upper_corner = Point<dim>(read_vector<dim>(prm, "Upper corner", path));
-    particles_per_direction = prm.get_integer("Particles per cell direction");
     points_file             = prm.get("Points file");
     mesh_file               = prm.get("Mesh file");
     mesh_scale              = prm.get_double("Mesh scale");
     mesh_translation        = read_vector<dim>(prm, "Mesh translation", path);
-    material.parse_parameters(prm, path);
-    velocity = read_vector<dim>(prm, "Velocity", path);
     prescribed = !Utilities::trim(prm.get("Prescribed velocity")).empty();
     if (prescribed)
       prescribed_velocity = read_vector<dim>(prm, "Prescribed velocity", path);
     prescribed_start_time = prm.get_double("Prescribed velocity start time");
+    parse_template_parameters(prm, path);
+  }
+
+  template <int dim>
+  void
+  BodyParameters<dim>::parse_template_parameters(ParameterHandler &prm, const std::string &path)
+  {
+    seeding                 = seedings<dim>().value(prm.get("Seeding"));
+    particles_per_direction = prm.get_integer("Particles per cell direction");
+    material.parse_parameters(prm, path);
+    velocity = read_vector<dim>(prm, "Velocity", path);
     const std::vector<double> omega =
       Utilities::string_to_double(Utilities::split_string_list(prm.get("Angular velocity")));
     if (dim == 2)

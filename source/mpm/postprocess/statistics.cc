@@ -13,7 +13,7 @@ namespace sable::mpm
   template <int dim>
   StatisticsFile<dim>::StatisticsFile(
     const std::string &                                       filename,
-    const unsigned int                                        n_bodies,
+    const std::vector<unsigned int> &                         bodies,
     const bool                                                with_contact,
     const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
     const bool                                                write,
@@ -41,7 +41,7 @@ namespace sable::mpm
     add("energy_drift", [](const Row &r) { return r.statistics.energy_drift; });
     for (unsigned int d = 0; d < dim; ++d)
       add("momentum_" + axes.substr(d, 1), [d](const Row &r) { return r.statistics.momentum[d]; });
-    for (unsigned int b = 0; b < n_bodies; ++b)
+    for (const unsigned int b : bodies)
       {
         const std::string body = "body" + std::to_string(b);
         for (unsigned int d = 0; d < dim; ++d)

@@ -69,6 +69,32 @@ namespace sable::mpm
     /// Refine around this body's surface (Mesh refinement criterion
     /// 'body surface').
     bool refine_surface = true;
+    /// A grain held by a face of the grid ('Bodies file/Lower x wall
+    /// velocity', ...): the body may reach beyond the grid, where no
+    /// material point is seeded; its centre lies inside.
+    bool clipped_by_grid = false;
+    /// Whether statistics.csv has the body's columns (position, velocity,
+    /// spin): the bodies of 'Body k' subsections, not those of a bodies file.
+    bool statistics_columns = true;
+    /// Where the body was described, for messages ("Body 3/" when empty,
+    /// else e.g. "pack.csv, line 12: ").
+    std::string origin;
+
+    /// The prefix of the body's entries in messages: origin, or
+    /// "Body <b>/" for the body of index @p b.
+    std::string
+    name(const unsigned int b) const
+    {
+      return origin.empty() ? "Body " + std::to_string(b) + "/" : origin;
+    }
+
+    /// The body itself in messages: "Body <b>" or "pack.csv, line 12".
+    std::string
+    label(const unsigned int b) const
+    {
+      const std::string prefix = name(b);
+      return prefix.substr(0, prefix.find_last_not_of(":/ ") + 1);
+    }
 
     /// Shape = points: read the points file, found relative to @p folder
     /// (that of the parameter file) unless its path is absolute.
@@ -105,6 +131,16 @@ namespace sable::mpm
     /// in messages.
     void
     parse_parameters(ParameterHandler &prm, const std::string &path);
+
+    /// The entries a body shares with the bodies of a bodies file (seeding,
+    /// material, initial motion, contact group, refinement), without those
+    /// of the shape and of a prescribed velocity.
+    static void
+    declare_template_parameters(ParameterHandler &prm);
+
+    /// Read the entries of declare_template_parameters().
+    void
+    parse_template_parameters(ParameterHandler &prm, const std::string &path);
 
     /// Throw InputError (naming path + entry) for invalid values: the one
     /// check of a body, for scene files and add_body() alike.

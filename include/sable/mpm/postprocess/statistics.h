@@ -65,14 +65,14 @@ namespace sable::mpm
    * run) the rows go after those already in the file, without a header.
    * write_row() is collective over @p communicator: a row that cannot be
    * written (a full disk) is a std::runtime_error naming the file on every
-   * rank.
+   * rank. Per-body columns for the @p bodies listed.
    */
   template <int dim>
   class StatisticsFile
   {
   public:
     StatisticsFile(const std::string &filename,
-                   const unsigned int n_bodies,
+                   const std::vector<unsigned int> &bodies,
                    const bool         with_contact,
                    const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
                    const bool         write,
