@@ -16,7 +16,7 @@ namespace sable::mpm
    * the centroid.
    */
   inline double
-  surface_centroid_offset_for_spacing(const double spacing)
+  surface_centroid_offset(const double spacing)
   {
     if (spacing >= 2.)
       return 0.5 * spacing;
@@ -30,14 +30,6 @@ namespace sable::mpm
         weights += 1 - y;
       }
     return weighted / weights;
-  }
-
-  /// surface_centroid_offset_for_spacing() for points seeded k per cell
-  /// direction on the cell they sit in.
-  inline double
-  surface_centroid_offset(const unsigned int points_per_cell_direction)
-  {
-    return surface_centroid_offset_for_spacing(1. / points_per_cell_direction);
   }
 } // namespace sable::mpm
 

@@ -211,7 +211,7 @@ namespace sable::mpm
             const double *moment   = mass_moment + c.node * (dim + 1);
             const double  centroid = moment[c.direction] / mass;
             const double  offset =
-              surface_centroid_offset_for_spacing(moment[dim] / (mass * c.cell_size));
+              surface_centroid_offset(moment[dim] / (mass * c.cell_size));
             const double gap = c.sign * (c.position - centroid) -
                                (offset + touching_tolerance) * c.cell_size;
             return gap - approach > 0.;

@@ -423,8 +423,8 @@ namespace sable::mpm
     // normal)
     const double size = std::sqrt(cell);
     const double touching =
-      (surface_centroid_offset_for_spacing(a.mass_spacing / (a.mass * size)) +
-       surface_centroid_offset_for_spacing(b.mass_spacing / (b.mass * size)) + touching_tolerance) *
+      (surface_centroid_offset(a.mass_spacing / (a.mass * size)) +
+       surface_centroid_offset(b.mass_spacing / (b.mass * size)) + touching_tolerance) *
       size;
     // apart, a sideways offset of the centroids beyond a quarter cell
     // counts too: off the line of centres of two round bodies the normal

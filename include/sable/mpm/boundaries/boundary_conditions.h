@@ -65,7 +65,7 @@ namespace sable::mpm
      * The mass moments sum_p N_i(x_p) m_p x_p and mass-weighted point
      * spacings sum_p N_i(x_p) m_p s_p (dim + 1 values per relevant node). A
      * friction wall with surface-position contact acts at a node only where
-     * the body's surface, taken surface_centroid_offset_for_spacing() cells
+     * the body's surface, taken surface_centroid_offset() cells
      * outside the node's mass centroid, is within a hundredth of a cell of
      * the wall after the step's approach. The pointer must stay valid until
      * apply().

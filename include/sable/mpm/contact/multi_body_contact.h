@@ -77,6 +77,10 @@ namespace sable::mpm
     {
       const unsigned int body = static_cast<unsigned int>(properties[ParticleLayout<dim>::body]);
       const double       mass = properties[ParticleLayout<dim>::mass];
+      // one root per point, only where the detection reads it
+      const double spacing = pass == GridPass::momentum_update && with_position ?
+                               ParticleLayout<dim>::seeding_spacing(properties) :
+                               0.;
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {
           if (!fields.is_contact_node(shape.nodes[v]))
@@ -93,7 +97,7 @@ namespace sable::mpm
               if (with_position)
                 {
                   record.mass_position += weight * location;
-                  record.mass_spacing += weight * ParticleLayout<dim>::seeding_spacing(properties);
+                  record.mass_spacing += weight * spacing;
                 }
               if (with_traction)
                 for (unsigned int i = 0; i < dim; ++i)
