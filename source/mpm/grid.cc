@@ -1,4 +1,5 @@
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/affine_constraints.h>
 
 #include <sable/mpm/grid.h>
@@ -7,6 +8,33 @@
 
 namespace sable::mpm
 {
+  namespace
+  {
+    template <int dim>
+    std::vector<GridTools::PeriodicFacePair<typename DoFHandler<dim>::cell_iterator>>
+    coarse_periodic_faces(const Triangulation<dim> &triangulation,
+                          const DoFHandler<dim> &   dof_handler)
+    {
+      // the coarse pairs add_periodicity() was given, each once (lower face
+      // first); make_periodicity_constraints() descends to the active faces
+      std::vector<GridTools::PeriodicFacePair<typename DoFHandler<dim>::cell_iterator>> pairs;
+      for (const auto &[face, partner] : triangulation.get_periodic_face_map())
+        if (face.first->level() == 0 && face.second % 2 == 0)
+          {
+            GridTools::PeriodicFacePair<typename DoFHandler<dim>::cell_iterator> pair;
+            pair.cell[0] = typename DoFHandler<dim>::cell_iterator(
+              &triangulation, 0, face.first->index(), &dof_handler);
+            pair.cell[1] = typename DoFHandler<dim>::cell_iterator(
+              &triangulation, 0, partner.first.first->index(), &dof_handler);
+            pair.face_idx[0]  = face.second;
+            pair.face_idx[1]  = partner.first.second;
+            pair.orientation  = partner.second;
+            pairs.push_back(pair);
+          }
+      return pairs;
+    }
+  } // namespace
+
   template <int dim>
   Grid<dim>::Grid(const parallel::distributed::Triangulation<dim> &triangulation)
     : triangulation(triangulation)
@@ -27,10 +55,17 @@ namespace sable::mpm
       triangulation.get_communicator());
 
     // hanging nodes: each constrained vertex is a weighted sum of
-    // unconstrained nodes (close() resolves chains of constraints)
+    // unconstrained nodes; on a periodic grid the vertices of one face of
+    // each matched pair are their images on the other (close() resolves
+    // chains of constraints)
     AffineConstraints<double> constraints;
     constraints.reinit(relevant);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    periodic = Periodicity<dim>::of(triangulation);
+    if (periodic.any())
+      DoFTools::make_periodicity_constraints<dim, dim, double>(
+        coarse_periodic_faces(triangulation, dof_handler),
+                                                               constraints);
     constraints.close();
 
     cells.assign(triangulation.n_active_cells(), CellData());
@@ -42,6 +77,14 @@ namespace sable::mpm
     spacing.assign(n_relevant_nodes(), huge);
     positions.assign(n_relevant_nodes(), Point<dim>());
     std::vector<types::global_dof_index> dofs(nodes_per_cell);
+    // every node's position first: a folded cell's shifts need its masters'
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int v = 0; v < nodes_per_cell; ++v)
+            positions[node_partitioner->global_to_local(dofs[v])] = cell->vertex(v);
+        }
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         {
@@ -50,14 +93,13 @@ namespace sable::mpm
           bool hanging = false;
           for (unsigned int v = 0; v < nodes_per_cell; ++v)
             {
-              data.nodes[v]             = node_partitioner->global_to_local(dofs[v]);
-              positions[data.nodes[v]] = cell->vertex(v);
-              hanging = hanging || constraints.is_constrained(dofs[v]);
+              data.nodes[v] = node_partitioner->global_to_local(dofs[v]);
+              hanging       = hanging || constraints.is_constrained(dofs[v]);
             }
           if (hanging)
             {
               data.hanging = hanging_cells.size();
-              hanging_cells.push_back(fold_hanging_vertices(dofs, constraints));
+              hanging_cells.push_back(fold_hanging_vertices(cell, dofs, constraints));
             }
           const auto [nodes, n_nodes] = cell_nodes(data);
           for (unsigned int d = 0; d < dim; ++d)
@@ -75,26 +117,37 @@ namespace sable::mpm
 
   template <int dim>
   typename Grid<dim>::HangingCell
-  Grid<dim>::fold_hanging_vertices(const std::vector<types::global_dof_index> &dofs,
-                                   const AffineConstraints<double> &constraints) const
+  Grid<dim>::fold_hanging_vertices(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    const std::vector<types::global_dof_index> &          dofs,
+    const AffineConstraints<double> &                     constraints) const
   {
     HangingCell  folded;
     unsigned int n_entries = 0;
-    const auto   slot      = [&](const types::global_dof_index dof) {
-      const unsigned int node = node_partitioner->global_to_local(dof);
+    const auto   slot      = [&](const types::global_dof_index dof, const Point<dim> &vertex) {
+      const unsigned int   node  = node_partitioner->global_to_local(dof);
+      const Tensor<1, dim> shift = periodic.image_shift(vertex, positions[node]);
       for (unsigned int k = 0; k < folded.n_nodes; ++k)
         if (folded.nodes[k] == node)
-          return k;
+          {
+            AssertThrow((folded.shift[k] - shift).norm() == 0.,
+                        ExcMessage("A cell reaches one node across a periodic seam and "
+                                   "directly: a periodic axis needs at least 3 cells."));
+            return k;
+          }
       AssertThrow(folded.n_nodes < max_nodes_per_cell,
                   ExcMessage("A cell's hanging vertices reach more nodes than a "
                              "2:1 balanced mesh allows."));
       folded.nodes[folded.n_nodes] = node;
+      folded.shift[folded.n_nodes] = shift;
+      folded.shifted               = folded.shifted || shift.norm() > 0.;
       return folded.n_nodes++;
     };
-    const auto add = [&](const types::global_dof_index dof, const double weight) {
+    unsigned int vertex  = 0;
+    const auto   add     = [&](const types::global_dof_index dof, const double weight) {
       AssertThrow(n_entries < HangingCell::max_entries,
                   ExcMessage("A hanging vertex depends on more nodes than expected."));
-      folded.slot[n_entries]   = slot(dof);
+      folded.slot[n_entries]   = slot(dof, cell->vertex(vertex));
       folded.weight[n_entries] = weight;
       ++n_entries;
     };
@@ -103,6 +156,7 @@ namespace sable::mpm
     };
     for (unsigned int v = 0; v < nodes_per_cell; ++v)
       {
+        vertex              = v;
         folded.first[v]     = n_entries;
         const auto *entries = constraints.get_constraint_entries(dofs[v]);
         if (entries == nullptr)

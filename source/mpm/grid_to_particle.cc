@@ -49,6 +49,9 @@ namespace sable::mpm
 
     const PrescribedVelocities<dim> *const drivers =
       prescribed != nullptr && prescribed->any() ? prescribed : nullptr;
+    // points leaving through a periodic face come back in at the other
+    const Periodicity<dim> *const periodicity =
+      grid.periodicity().any() ? &grid.periodicity() : nullptr;
     Report     report;
     std::mutex report_mutex;
     parallel::apply_to_subranges(
@@ -119,6 +122,8 @@ namespace sable::mpm
                       if (std::abs(displacement[d]) * data.inverse_h[d] > 1.)
                         local.fail(true, particle.get_id(), location);
                     location += displacement;
+                    if (periodicity != nullptr)
+                      periodicity->wrap(location);
                     particle.set_location(location);
                     local.n_left_cell += !cell.contains(location);
                     local.max_signal_speed =

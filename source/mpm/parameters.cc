@@ -121,6 +121,16 @@ namespace sable::mpm
                                      2 * dim,
                                      2 * dim),
                       "Boundary id of the faces x-, x+, y-, y+ (, z-, z+).");
+    prm.declare_entry("Periodic axes",
+                      "",
+                      Patterns::List(Patterns::Selection(dim == 2 ? "x|y" : "x|y|z"), 0, dim),
+                      "Axes along which the grid is periodic, e.g. 'y': its "
+                      "two faces normal to the axis are one, material "
+                      "points leaving through one come back in through the "
+                      "other, and contact acts across them. Bodies may cross "
+                      "these faces (they are seeded wrapped). Needs at least "
+                      "3 cells along the axis; its faces take no boundary "
+                      "condition.");
     prm.leave_subsection();
 
     prm.enter_subsection("Boundary conditions");
@@ -343,6 +353,20 @@ namespace sable::mpm
       grid.subdivisions.push_back(n);
     for (const int id : Utilities::string_to_int(Utilities::split_string_list(prm.get("Boundary ids"))))
       grid.face_ids.push_back(id);
+    for (const std::string &axis : Utilities::split_string_list(prm.get("Periodic axes")))
+      {
+        const unsigned int d = axis[0] - 'x';
+        grid.periodic[d]     = true;
+        check_input(grid.subdivisions[d] >= 3,
+                    "Grid/Subdivisions",
+                    prm.get("Subdivisions"),
+                    "at least 3 cells along the periodic axis " + axis);
+        // the potential energy would jump at the seam
+        check_input(p.gravity[d] == 0.,
+                    "Gravity",
+                    std::to_string(p.gravity[d]) + " along " + axis,
+                    "0 along the periodic axis " + axis + " (Grid/Periodic axes)");
+      }
     const std::string grid_ids = prm.get("Boundary ids");
     const std::string grid_box =
       "[" + prm.get("Lower corner") + "] - [" + prm.get("Upper corner") + "]";
@@ -361,12 +385,30 @@ namespace sable::mpm
       std::string                        allowed;
       for (const types::boundary_id id : ids)
         allowed += (allowed.empty() ? "" : ", ") + std::to_string(id);
+      // the faces of a periodic axis are not boundaries
+      std::set<types::boundary_id> periodic_ids;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (grid.periodic[d])
+          periodic_ids.insert({grid.face_ids[2 * d], grid.face_ids[2 * d + 1]});
+      std::string walls;
+      for (const types::boundary_id id : ids)
+        if (periodic_ids.count(id) == 0)
+          walls += (walls.empty() ? "" : ", ") + std::to_string(id);
       for (const auto &[id, type] : split_map(prm.get("Types")))
-        check_input(ids.count(std::stoi(id)) > 0,
-                    "Boundary conditions/Types",
-                    id + ": " + type,
-                    "boundary ids of the grid's faces, " + allowed + " (Grid/Boundary ids = " +
-                      grid_ids + ")");
+        {
+          check_input(ids.count(std::stoi(id)) > 0,
+                      "Boundary conditions/Types",
+                      id + ": " + type,
+                      "boundary ids of the grid's faces, " + allowed + " (Grid/Boundary ids = " +
+                        grid_ids + ")");
+          check_input(periodic_ids.count(std::stoi(id)) == 0,
+                      "Boundary conditions/Types",
+                      id + ": " + type,
+                      "ids of faces that are not periodic, " +
+                        (walls.empty() ? std::string("none") : walls) +
+                        " (the faces of Grid/Periodic axes take no condition; "
+                        "Grid/Boundary ids = " + grid_ids + ")");
+        }
     }
     prm.leave_subsection();
 
@@ -378,7 +420,7 @@ namespace sable::mpm
       BodiesFile<dim> bodies_file;
       bodies_file.parse_parameters(prm);
       prm.leave_subsection();
-      file_bodies = bodies_file.create_bodies(folder, grid.lower_corner, grid.upper_corner);
+      file_bodies = bodies_file.create_bodies(folder, grid.lower_corner, grid.upper_corner, grid.periodic);
     }
 
     prm.enter_subsection("Contact");
@@ -428,14 +470,29 @@ namespace sable::mpm
 
     // every body inside the grid (the grid is the scene's, not a parameter
     // of the Simulator, which checks its own triangulation); the bodies of
-    // a file were checked as they were made
+    // a file were checked as they were made. Along a periodic axis: its
+    // centre, and a body no longer than the period.
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        const auto box = p.bodies[b].bounding_box();
+        const auto       box    = p.bodies[b].bounding_box();
+        const Point<dim> centre = p.bodies[b].centre();
         for (unsigned int d = 0; d < dim; ++d)
-          if (box.first[d] < grid.lower_corner[d] || box.second[d] > grid.upper_corner[d])
-            throw InputError("invalid input: 'Body " + std::to_string(b) + "/" + locations[b] +
-                             "'; allowed: a body lying inside the grid " + grid_box);
+          {
+            const double period = grid.upper_corner[d] - grid.lower_corner[d];
+            if (grid.periodic[d] && box.second[d] - box.first[d] > period * (1. + 1e-12))
+              throw InputError("invalid input: 'Body " + std::to_string(b) + "/" + locations[b] +
+                               "'; allowed: a body no longer than the period " +
+                               std::to_string(period) + " along the periodic axis " +
+                               std::string(1, "xyz"[d]));
+            const double low  = grid.periodic[d] ? centre[d] : box.first[d];
+            const double high = grid.periodic[d] ? centre[d] : box.second[d];
+            if (low < grid.lower_corner[d] || high > grid.upper_corner[d])
+              throw InputError("invalid input: 'Body " + std::to_string(b) + "/" + locations[b] +
+                               "'; allowed: a body lying inside the grid " + grid_box +
+                               (grid.periodic[d] ? " (its centre, along the periodic axis " +
+                                                     std::string(1, "xyz"[d]) + ")" :
+                                                   std::string()));
+          }
       }
     return scene;
   }

@@ -34,21 +34,23 @@ namespace sable::mpm
           // half the edge of the point's current volume
           const double half =
             0.5 * std::pow(determinant(F) * props[Layout::initial_volume], 1. / dim);
-          const Point<dim> x = particle.get_location();
           for (unsigned int v = 0; v < shape.n_nodes; ++v)
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                double *const e = extent + shape.nodes[v] * 2 * dim + 2 * d;
-                e[0]            = std::min(e[0], x[d] - half);
-                e[1]            = std::min(e[1], -(x[d] + half));
-              }
+            {
+              const Point<dim> x = shape.image_for_node(particle.get_location(), v);
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  double *const e = extent + shape.nodes[v] * 2 * dim + 2 * d;
+                  e[0]            = std::min(e[0], x[d] - half);
+                  e[1]            = std::min(e[1], -(x[d] + half));
+                }
+            }
         }
       if (moment != nullptr)
         {
-          const Point<dim> x = particle.get_location();
           const double     spacing = Layout::seeding_spacing(props);
           for (unsigned int v = 0; v < shape.n_nodes; ++v)
             {
+              const Point<dim> x = shape.image_for_node(particle.get_location(), v);
               double *const m      = moment + shape.nodes[v] * (dim + 1);
               const double  weight = mass * shape.values[v];
               for (unsigned int d = 0; d < dim; ++d)

@@ -1,4 +1,5 @@
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <sable/mpm/checkpoint.h>
 #include <sable/mpm/memory_estimate.h>
@@ -18,10 +19,18 @@ namespace sable::mpm
   {
     unsigned int              k = 0;
     std::vector<unsigned int> coarse = parameters.subdivisions;
-    while (std::all_of(coarse.begin(), coarse.end(), [](const unsigned int n) {
-      return n > 0 && n % 2 == 0;
-    }))
+    // a periodic axis keeps 3 coarse cells (a cell's nodes must not meet
+    // across the seam)
+    const auto halves = [&](const unsigned int d) {
+      return coarse[d] > 0 && coarse[d] % 2 == 0 && (!parameters.periodic[d] || coarse[d] >= 6);
+    };
+    while (true)
       {
+        bool all = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          all = all && halves(d);
+        if (!all)
+          break;
         for (unsigned int &n : coarse)
           n /= 2;
         ++k;
@@ -31,12 +40,21 @@ namespace sable::mpm
                                               parameters.lower_corner,
                                               parameters.upper_corner,
                                               /*colorize=*/true);
-    // colorize numbers the faces x-, x+, y-, ... as 0, 1, 2, ...; children
-    // inherit the ids
+    // colorize numbers the faces x-, x+, y-, ... as 0, 1, 2, ...; the
+    // periodic pairs are matched by these ids, before the user's ids
+    std::vector<GridTools::PeriodicFacePair<
+      typename parallel::distributed::Triangulation<dim>::cell_iterator>>
+      periodic_faces;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (parameters.periodic[d])
+        GridTools::collect_periodic_faces(triangulation, 2 * d, 2 * d + 1, d, periodic_faces);
+    // children inherit the ids
     for (const auto &cell : triangulation.active_cell_iterators())
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
           face->set_boundary_id(parameters.face_ids[face->boundary_id()]);
+    if (!periodic_faces.empty())
+      triangulation.add_periodicity(periodic_faces);
     if (refine)
       triangulation.refine_global(k);
     return k;

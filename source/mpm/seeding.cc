@@ -2,6 +2,7 @@
 
 #include <sable/mpm/bodies/conforming_seeding.h>
 #include <sable/mpm/owned_cell_strip.h>
+#include <sable/mpm/periodicity.h>
 #include <sable/mpm/q1_shape.h>
 #include <sable/mpm/seeding.h>
 
@@ -21,6 +22,7 @@ namespace sable::mpm
               Particles::ParticleHandler<dim> &                particle_handler)
   {
     const OwnedCellStrip<dim> owned_cells(triangulation);
+    const Periodicity<dim>    periodicity = Periodicity<dim>::of(triangulation);
     // the grid's upper bounds (the coarse vertices are on every rank)
     Point<dim> grid_upper = triangulation.get_vertices()[0];
     for (const Point<dim> &v : triangulation.get_vertices())
@@ -41,9 +43,34 @@ namespace sable::mpm
         for (unsigned int d = 0; d < dim; ++d)
           n_sub *= k;
 
-        // one material point at x in cell (at @p reference in its unit cell)
+        // the shifts by whole periods that bring part of the body into the
+        // grid: a body crossing a periodic face is seeded wrapped, its
+        // points at x + shift
+        std::vector<Tensor<1, dim>> shifts(1);
+        for (unsigned int d = 0; d < dim; ++d)
+          if (periodicity.periodic[d])
+            {
+              const std::size_t n = shifts.size();
+              for (const double sign : {-1., 1.})
+                for (std::size_t i = 0; i < n; ++i)
+                  {
+                    Tensor<1, dim> shift = shifts[i];
+                    shift[d]             = sign * periodicity.period(d);
+                    if (box.first[d] + shift[d] < periodicity.upper[d] &&
+                        box.second[d] + shift[d] > periodicity.lower[d])
+                      shifts.push_back(shift);
+                  }
+            }
+        const auto shifted = [](const std::pair<Point<dim>, Point<dim>> &b,
+                                const Tensor<1, dim> &                  shift) {
+          return std::make_pair(b.first + shift, b.second + shift);
+        };
+
+        // one material point at x in cell (at @p reference in its unit
+        // cell), at x_body in the body's frame (x less the image shift)
         const auto add_point = [&](const auto &      cell,
                                    const Point<dim> &x,
+                                   const Point<dim> &x_body,
                                    const Point<dim> &reference,
                                    const double      volume,
                                    const Tensor<1, dim> *velocity) {
@@ -54,7 +81,7 @@ namespace sable::mpm
           // v = v0 + omega x (x - c), unless the points file gives v
           Tensor<1, 3> r, omega_cross_r;
           for (unsigned int d = 0; d < dim; ++d)
-            r[d] = x[d] - centre[d];
+            r[d] = x_body[d] - centre[d];
           omega_cross_r = cross_product_3d(body.angular_velocity, r);
           for (unsigned int d = 0; d < dim; ++d)
             properties[layout.velocity + d] =
@@ -65,7 +92,7 @@ namespace sable::mpm
             {
               // p = rho g . (x - x_top) >= 0, sigma = -p I
               const double pressure =
-                material.density() * (gravity * (x - top));
+                material.density() * (gravity * (x_body - top));
               for (unsigned int d = 0; d < 3; ++d)
                 properties[layout.stress + d] = -pressure;
             }
@@ -76,18 +103,18 @@ namespace sable::mpm
                                             make_array_view(properties));
         };
 
-        // each point of a cloud in the one owned cell holding it (cells
-        // half open, closed at the grid's upper bounds); points sorted by
-        // x to find a cell's in a slab
-        const auto seed_cloud = [&](const PointCloud<dim> &cloud) {
+        // each point of a cloud, moved by @p shift, in the one owned cell
+        // holding it (cells half open, closed at the grid's upper bounds);
+        // points sorted by x to find a cell's in a slab
+        const auto seed_cloud = [&](const PointCloud<dim> &cloud, const Tensor<1, dim> &shift) {
             std::vector<unsigned int> order(cloud.positions.size());
             std::iota(order.begin(), order.end(), 0u);
             std::sort(order.begin(), order.end(), [&](const unsigned int i, const unsigned int j) {
               return cloud.positions[i][0] < cloud.positions[j][0];
             });
-            owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
-              const Point<dim> &lower = strip_cell.lower;
-              const Point<dim> &upper = strip_cell.upper;
+            owned_cells.for_each_overlapping(shifted(box, shift), [&](const auto &strip_cell) {
+              const Point<dim> lower = strip_cell.lower - shift;
+              const Point<dim> upper = strip_cell.upper - shift;
               const auto inside = [&](const Point<dim> &x) {
                 for (unsigned int d = 0; d < dim; ++d)
                   if (x[d] < lower[d] || x[d] > upper[d] ||
@@ -107,7 +134,7 @@ namespace sable::mpm
                   Point<dim> reference;
                   for (unsigned int d = 0; d < dim; ++d)
                     reference[d] = (x[d] - lower[d]) / (upper[d] - lower[d]);
-                  add_point(strip_cell.cell, x, reference, cloud.volumes[*i],
+                  add_point(strip_cell.cell, x + shift, x, reference, cloud.volumes[*i],
                             cloud.velocities.empty() ? nullptr : &cloud.velocities[*i]);
                 }
             });
@@ -115,23 +142,29 @@ namespace sable::mpm
 
         if (body.shape == BodyParameters<dim>::Shape::points)
           {
-            seed_cloud(body.cloud);
+            for (const Tensor<1, dim> &shift : shifts)
+              seed_cloud(body.cloud, shift);
             continue;
           }
         if (body.seeding == BodyParameters<dim>::Seeding::conforming)
           {
             // spacing h/k of the smallest cell the body overlaps, on every rank
             double smallest = std::numeric_limits<double>::max();
-            owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
-              for (unsigned int d = 0; d < dim; ++d)
-                smallest = std::min(smallest, strip_cell.upper[d] - strip_cell.lower[d]);
-            });
+            for (const Tensor<1, dim> &shift : shifts)
+              owned_cells.for_each_overlapping(shifted(box, shift), [&](const auto &strip_cell) {
+                for (unsigned int d = 0; d < dim; ++d)
+                  smallest = std::min(smallest, strip_cell.upper[d] - strip_cell.lower[d]);
+              });
             smallest = Utilities::MPI::min(smallest, triangulation.get_communicator());
-            seed_cloud(conforming_ball_points(body.center, body.radius, smallest / k));
+            const PointCloud<dim> cloud =
+              conforming_ball_points(body.center, body.radius, smallest / k);
+            for (const Tensor<1, dim> &shift : shifts)
+              seed_cloud(cloud, shift);
             continue;
           }
 
-        owned_cells.for_each_overlapping(box, [&](const auto &strip_cell) {
+        for (const Tensor<1, dim> &shift : shifts)
+          owned_cells.for_each_overlapping(shifted(box, shift), [&](const auto &strip_cell) {
             const Point<dim> lower = strip_cell.lower;
             const Point<dim> upper = strip_cell.upper;
             const double sub_volume = strip_cell.cell->measure() / n_sub;
@@ -141,8 +174,8 @@ namespace sable::mpm
                 Point<dim>       x;
                 for (unsigned int d = 0; d < dim; ++d)
                   x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
-                if (body.contains(x))
-                  add_point(strip_cell.cell, x, reference, sub_volume, nullptr);
+                if (body.contains(x - shift))
+                  add_point(strip_cell.cell, x, x - shift, reference, sub_volume, nullptr);
               }
           });
       }

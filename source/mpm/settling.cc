@@ -80,9 +80,13 @@ namespace sable::mpm
         auto                       props = particle.get_properties();
         const unsigned int         b     = static_cast<unsigned int>(props[layout.body]);
         const BodyParameters<dim> &body  = parameters.bodies[b];
-        Tensor<1, 3>               r;
+        // about the centre's image nearest the point (periodic grids)
+        const Point<dim> &x      = particle.get_location();
+        const Point<dim>  centre = settled.body_position[b] +
+                                  grid.periodicity().image_shift(settled.body_position[b], x);
+        Tensor<1, 3>      r;
         for (unsigned int d = 0; d < dim; ++d)
-          r[d] = particle.get_location()[d] - settled.body_position[b][d];
+          r[d] = x[d] - centre[d];
         const Tensor<1, 3> spin = cross_product_3d(body.angular_velocity, r);
         Tensor<1, dim>     v;
         for (unsigned int d = 0; d < dim; ++d)

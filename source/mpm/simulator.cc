@@ -9,6 +9,7 @@
 #include <sable/mpm/postprocess/contact_node_output.h>
 #include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/postprocess/particle_output.h>
+#include <sable/mpm/periodicity.h>
 #include <sable/mpm/seeding.h>
 #include <sable/mpm/simulator.h>
 #include <sable/mpm/stress_update.h>
@@ -78,15 +79,31 @@ namespace sable::mpm
   {
     check_parameters(parameters);
     // every body must lie inside the grid (a grain held by a face of it:
-    // its centre)
+    // its centre; along a periodic axis: its centre, and it may not be
+    // longer than the period)
+    const Periodicity<dim> periodicity = Periodicity<dim>::of(triangulation);
     {
       const auto box = GridTools::compute_bounding_box(triangulation);
       for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
         {
           const auto &body     = parameters.bodies[b];
           auto        body_box = body.bounding_box();
-          if (body.clipped_by_grid)
-            body_box = {body.centre(), body.centre()};
+          for (unsigned int d = 0; d < dim; ++d)
+            if (periodicity.periodic[d])
+              check_input(body_box.second[d] - body_box.first[d] <=
+                            periodicity.period(d) * (1. + 1e-12),
+                          body.label(b),
+                          to_string(body_box.first) + " - " + to_string(body_box.second),
+                          "a body no longer than the period " +
+                            std::to_string(periodicity.period(d)) + " along the periodic axis " +
+                            std::string(1, "xyz"[d]));
+          const Point<dim> centre = body.centre();
+          for (unsigned int d = 0; d < dim; ++d)
+            if (body.clipped_by_grid || periodicity.periodic[d])
+              {
+                body_box.first[d]  = centre[d];
+                body_box.second[d] = centre[d];
+              }
           for (unsigned int d = 0; d < dim; ++d)
             check_input(body_box.first[d] >= box.get_boundary_points().first[d] - 1e-12 &&
                           body_box.second[d] <= box.get_boundary_points().second[d] + 1e-12,
@@ -111,6 +128,13 @@ namespace sable::mpm
         for (const auto &body : parameters.bodies)
           groups.push_back(body.group);
         contact = std::make_unique<MultiBodyContact<dim>>(parameters.contact, groups);
+        // contact reads the other ranks' points near it as ghost particles,
+        // which deal.II 9.4 does not send across periodic faces
+        check_input(!parallel || !periodicity.any(),
+                    "Grid/Periodic axes",
+                    periodicity.axes(),
+                    "none in a scene with contact between bodies on more than one MPI "
+                    "rank (run it on one rank; threads are allowed)");
       }
 
     prescribed_velocities = PrescribedVelocities<dim>(parameters.bodies);
@@ -609,7 +633,8 @@ namespace sable::mpm
                                                        layout,
                                                        materials,
                                                        parameters.gravity,
-                                                       contact ? &contact->get_model() : nullptr);
+                                                       contact ? &contact->get_model() : nullptr,
+                                                       grid.periodicity());
     s.wall_heat    = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
     s.energy_drift     = energy_drift(s);
     return s;

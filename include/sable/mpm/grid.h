@@ -7,6 +7,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_cartesian.h>
 
+#include <sable/mpm/periodicity.h>
 #include <sable/mpm/q1_shape.h>
 
 #include <array>
@@ -40,6 +41,13 @@ namespace sable::mpm
    * scatter to and gather from unconstrained nodes only: no hanging node
    * holds data, P2G and G2P use the same weights (exact transposes), and
    * the folded functions keep the partition of unity and sum_k grad N_k = 0.
+   *
+   * On a periodic grid (faces matched with add_periodicity() before
+   * refinement) the vertices of the upper faces are constrained to their
+   * images on the lower faces in the same way: a cell at the upper face
+   * folds its shape functions onto nodes one period away, and its table
+   * carries for each node the shift (whole periods) that brings a point of
+   * the cell next to that node, for sums weighted by position.
    */
   template <int dim>
   class Grid
@@ -72,6 +80,10 @@ namespace sable::mpm
       std::array<unsigned char, nodes_per_cell + 1> first;
       std::array<unsigned char, max_entries>        slot;
       std::array<double, max_entries>               weight;
+      /// per node: the whole periods a point of the cell is moved by to lie
+      /// next to the node (nonzero only across a periodic seam)
+      bool                                          shifted = false;
+      std::array<Tensor<1, dim>, max_nodes_per_cell> shift;
     };
 
     /// Shape functions of one cell at one point, on unconstrained nodes.
@@ -81,6 +93,16 @@ namespace sable::mpm
       const unsigned int *  nodes   = nullptr;
       const double *        values  = nullptr;
       const Tensor<1, dim> *gradients = nullptr;
+      /// per node, the image shift of the point (see HangingCell::shift), or
+      /// nullptr where no node lies across a periodic seam
+      const Tensor<1, dim> *shifts = nullptr;
+
+      /// A point at @p x as node @p k sees it: its image next to the node.
+      Point<dim>
+      image_for_node(const Point<dim> &x, const unsigned int k) const
+      {
+        return shifts == nullptr ? x : x + shifts[k];
+      }
 
       Q1Shape<dim>                                   vertex;
       std::array<double, max_nodes_per_cell>         folded_values;
@@ -120,11 +142,13 @@ namespace sable::mpm
           shape.nodes     = data.nodes.data();
           shape.values    = shape.vertex.values.data();
           shape.gradients = shape.vertex.gradients.data();
+          shape.shifts    = nullptr;
           return;
         }
       const HangingCell &h = hanging_cells[data.hanging];
       shape.n_nodes        = h.n_nodes;
       shape.nodes          = h.nodes.data();
+      shape.shifts         = h.shifted ? h.shift.data() : nullptr;
       for (unsigned int k = 0; k < h.n_nodes; ++k)
         {
           shape.folded_values[k]    = 0.;
@@ -174,6 +198,13 @@ namespace sable::mpm
       return positions;
     }
 
+    /// The periodic axes and the box (read off the triangulation in setup()).
+    const Periodicity<dim> &
+    periodicity() const
+    {
+      return periodic;
+    }
+
     /// Smallest cell extent over the whole grid (all ranks).
     double
     minimum_cell_size() const
@@ -204,8 +235,9 @@ namespace sable::mpm
 
   private:
     HangingCell
-    fold_hanging_vertices(const std::vector<types::global_dof_index> &dofs,
-                          const AffineConstraints<double> &constraints) const;
+    fold_hanging_vertices(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                          const std::vector<types::global_dof_index> &         dofs,
+                          const AffineConstraints<double> &                    constraints) const;
 
     FE_Q<dim>              fe;
     MappingCartesian<dim>  mapping;
@@ -215,6 +247,7 @@ namespace sable::mpm
     std::vector<HangingCell> hanging_cells;
     std::vector<Tensor<1, dim>> spacing;
     std::vector<Point<dim>>     positions;
+    Periodicity<dim>            periodic;
     double                min_cell_size = 0.;
   };
 } // namespace sable::mpm

@@ -15,6 +15,7 @@
 
 #include <map>
 #include <string>
+#include <array>
 #include <vector>
 
 namespace sable::mpm
@@ -29,6 +30,8 @@ namespace sable::mpm
     std::vector<unsigned int>       subdivisions;
     /// Boundary ids of the faces x−, x+, y−, y+ (z−, z+).
     std::vector<types::boundary_id> face_ids;
+    /// Axes along which the grid is periodic (its two faces matched).
+    std::array<bool, dim> periodic{};
   };
 
   enum class UpdateScheme

@@ -83,13 +83,21 @@ namespace sable::mpm
 
   template <int dim>
   std::vector<BodyParameters<dim>>
-  BodiesFile<dim>::create_bodies(const std::string &folder,
-                                 const Point<dim> & lower,
-                                 const Point<dim> & upper) const
+  BodiesFile<dim>::create_bodies(const std::string &          folder,
+                                 const Point<dim> &           lower,
+                                 const Point<dim> &           upper,
+                                 const std::array<bool, dim> &periodic) const
   {
     std::vector<BodyParameters<dim>> bodies;
     if (file.empty())
       return bodies;
+    for (unsigned int face = 0; face < 2 * dim; ++face)
+      if (holds[face] && periodic[face / 2])
+        check_input(false,
+                    "Bodies file/" + wall_entry(face),
+                    "given",
+                    "empty: the faces of a periodic axis (Grid/Periodic axes) hold no "
+                    "grains");
     const std::filesystem::path path(file);
     const std::string           found =
       path.is_absolute() || folder.empty() ? file : (std::filesystem::path(folder) / path).string();
@@ -126,6 +134,9 @@ namespace sable::mpm
         for (unsigned int face = 0; face < 2 * dim; ++face)
           {
             const unsigned int d = face / 2;
+            // a grain crossing a periodic face is seeded wrapped
+            if (periodic[d])
+              continue;
             const bool beyond    = face % 2 == 0 ? grain.centre[d] - grain.radius < lower[d] :
                                                    grain.centre[d] + grain.radius > upper[d];
             if (!beyond)

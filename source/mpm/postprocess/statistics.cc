@@ -3,6 +3,7 @@
 #include <sable/mpm/postprocess/statistics.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -102,6 +103,47 @@ namespace sable::mpm
       throw std::runtime_error(error);
   }
 
+  namespace
+  {
+    /// Per body, along each periodic axis, the mass-weighted circular mean
+    /// of its points' positions (the angle 2 pi (x - lower) / period): a
+    /// point of the body within half a period of all its points, whichever
+    /// side of the seam they are on (collective).
+    template <int dim>
+    std::vector<Point<dim>>
+    circular_mean_positions(const Particles::ParticleHandler<dim> &particle_handler,
+                            const ParticleLayout<dim> &            layout,
+                            const unsigned int                     n_bodies,
+                            const Periodicity<dim> &               periodicity,
+                            const MPI_Comm                         communicator)
+    {
+      std::vector<double> sums(n_bodies * 2 * dim, 0.);
+      for (const auto &particle : particle_handler)
+        {
+          const auto         props = particle.get_properties();
+          const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+          for (unsigned int d = 0; d < dim; ++d)
+            if (periodicity.periodic[d])
+              {
+                const double angle = 2. * numbers::PI *
+                                     (particle.get_location()[d] - periodicity.lower[d]) /
+                                     periodicity.period(d);
+                sums[(body * dim + d) * 2] += props[layout.mass] * std::cos(angle);
+                sums[(body * dim + d) * 2 + 1] += props[layout.mass] * std::sin(angle);
+              }
+        }
+      Utilities::MPI::sum(sums, communicator, sums);
+      std::vector<Point<dim>> means(n_bodies);
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        for (unsigned int d = 0; d < dim; ++d)
+          if (periodicity.periodic[d])
+            means[b][d] = periodicity.lower[d] +
+                          std::atan2(sums[(b * dim + d) * 2 + 1], sums[(b * dim + d) * 2]) /
+                            (2. * numbers::PI) * periodicity.period(d);
+      return means;
+    }
+  } // namespace
+
   template <int dim>
   Statistics<dim>
   compute_statistics(const Triangulation<dim> &                    triangulation,
@@ -109,10 +151,15 @@ namespace sable::mpm
                      const ParticleLayout<dim> &                   layout,
                      const std::vector<std::unique_ptr<Material>> &materials,
                      const Tensor<1, dim> &                        gravity,
-                     const BardenhagenContact<dim> *               contact)
+                     const BardenhagenContact<dim> *               contact,
+                     const Periodicity<dim> &                      periodicity)
   {
+    const bool periodic = periodicity.any();
     const MPI_Comm communicator = triangulation.get_communicator();
     const unsigned int n_bodies = materials.size();
+    const std::vector<Point<dim>> body_references =
+      periodic ? circular_mean_positions(particle_handler, layout, n_bodies, periodicity, communicator) :
+                 std::vector<Point<dim>>();
     // kinetic, strain, gravity, plastic work, momentum (dim), then per
     // body: mass, m x (dim), m v (dim), angular momentum about the origin
     // (3), inertia tensor about the origin (9)
@@ -125,7 +172,10 @@ namespace sable::mpm
         const auto         props = particle.get_properties();
         const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
         const double       mass  = props[layout.mass];
-        const Point<dim>   x     = particle.get_location();
+        const Point<dim>   x =
+          periodic ? particle.get_location() +
+                       periodicity.image_shift(particle.get_location(), body_references[body]) :
+                     particle.get_location();
         double             v2    = 0;
         for (unsigned int d = 0; d < dim; ++d)
           v2 += props[layout.velocity + d] * props[layout.velocity + d];
@@ -178,6 +228,8 @@ namespace sable::mpm
             x[d] = x3[d] = body_sums[1 + d] / mass;
             v[d] = v3[d] = body_sums[1 + dim + d] / mass;
           }
+        if (periodic)
+          periodicity.wrap(x);
         s.body_position.push_back(x);
         s.body_velocity.push_back(v);
         // shift angular momentum and inertia to the centre of mass:
@@ -215,7 +267,8 @@ namespace sable::mpm
                                                    const ParticleLayout<dim> &,             \
                                                    const std::vector<std::unique_ptr<Material>> &, \
                                                    const Tensor<1, dim> &,                  \
-                                                   const BardenhagenContact<dim> *);
+                                                   const BardenhagenContact<dim> *,         \
+                                                   const Periodicity<dim> &);
   SABLE_INSTANTIATE(2)
   SABLE_INSTANTIATE(3)
 #undef SABLE_INSTANTIATE

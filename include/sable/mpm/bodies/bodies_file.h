@@ -8,6 +8,7 @@
 #include <sable/mpm/bodies/body_parameters.h>
 
 #include <string>
+#include <array>
 #include <vector>
 
 namespace sable::mpm
@@ -55,9 +56,10 @@ namespace sable::mpm
      * faces that do), is an InputError naming the file and line.
      */
     std::vector<BodyParameters<dim>>
-    create_bodies(const std::string &folder,
-                  const Point<dim> & lower,
-                  const Point<dim> & upper) const;
+    create_bodies(const std::string &          folder,
+                  const Point<dim> &           lower,
+                  const Point<dim> &           upper,
+                  const std::array<bool, dim> &periodic) const;
   };
 } // namespace sable::mpm
 

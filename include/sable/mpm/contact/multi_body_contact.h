@@ -96,7 +96,7 @@ namespace sable::mpm
               record.mass_gradient += mass * shape.gradients[v];
               if (with_position)
                 {
-                  record.mass_position += weight * location;
+                  record.mass_position += weight * shape.image_for_node(location, v);
                   record.mass_spacing += weight * spacing;
                 }
               if (with_traction)

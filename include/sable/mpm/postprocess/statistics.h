@@ -8,6 +8,7 @@
 #include <sable/mpm/contact/bardenhagen_contact.h>
 #include <sable/mpm/materials/material.h>
 #include <sable/mpm/particle_layout.h>
+#include <sable/mpm/periodicity.h>
 
 #include <fstream>
 #include <functional>
@@ -112,6 +113,11 @@ namespace sable::mpm
    * Energies, momentum and per-body centre of mass, velocity and angular
    * velocity of the material points over all ranks (collective), and, with
    * @p contact, its frictional heat and reported pair forces.
+   *
+   * On a periodic grid a body's points count at their images nearest to
+   * the body's circular mean position along each periodic axis, so that the
+   * centre of mass and angular velocity of a body crossing the seam are
+   * those of the whole body (its centre is given wrapped into the grid).
    */
   template <int dim>
   Statistics<dim>
@@ -120,7 +126,8 @@ namespace sable::mpm
                      const ParticleLayout<dim> &                   layout,
                      const std::vector<std::unique_ptr<Material>> &materials,
                      const Tensor<1, dim> &                        gravity,
-                     const BardenhagenContact<dim> *               contact);
+                     const BardenhagenContact<dim> *               contact,
+                     const Periodicity<dim> &                      periodicity);
 } // namespace sable::mpm
 
 #endif

@@ -1,0 +1,91 @@
+#ifndef sable_mpm_periodicity_h
+#define sable_mpm_periodicity_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/distributed/tria.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace sable::mpm
+{
+  using namespace dealii;
+
+  /**
+   * The axes along which the box-shaped grid is periodic (the grid's faces
+   * were matched with Triangulation::add_periodicity() before refinement)
+   * and the box: wraps positions into it and gives the image shift between
+   * two positions. Read off the triangulation, so that a program embedding
+   * sable only has to make its box periodic.
+   */
+  template <int dim>
+  struct Periodicity
+  {
+    std::array<bool, dim> periodic{};
+    Point<dim>            lower;
+    Point<dim>            upper;
+
+    /// From @p triangulation's periodic face pairs (a face x- matched to
+    /// x+ makes x periodic) and its bounding box.
+    static Periodicity
+    of(const parallel::distributed::Triangulation<dim> &triangulation);
+
+    bool
+    any() const
+    {
+      for (const bool p : periodic)
+        if (p)
+          return true;
+      return false;
+    }
+
+    double
+    period(const unsigned int d) const
+    {
+      return upper[d] - lower[d];
+    }
+
+    /// @p x moved by whole periods into [lower, upper) along periodic axes.
+    /// Returns whether it moved.
+    bool
+    wrap(Point<dim> &x) const
+    {
+      bool moved = false;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (periodic[d] && (x[d] < lower[d] || x[d] >= upper[d]))
+          {
+            x[d] -= std::floor((x[d] - lower[d]) / period(d)) * period(d);
+            // floor of a tiny negative offset can land exactly on upper
+            if (x[d] >= upper[d])
+              x[d] = lower[d];
+            moved = true;
+          }
+      return moved;
+    }
+
+    /// The whole periods to add to @p from to come nearest to @p to.
+    Tensor<1, dim>
+    image_shift(const Point<dim> &from, const Point<dim> &to) const
+    {
+      Tensor<1, dim> shift;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (periodic[d])
+          shift[d] = std::round((to[d] - from[d]) / period(d)) * period(d);
+      return shift;
+    }
+
+    /// The periodic axes as "x, y", or "none".
+    std::string
+    axes() const
+    {
+      std::string s;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (periodic[d])
+          s += (s.empty() ? "" : ", ") + std::string(1, "xyz"[d]);
+      return s.empty() ? "none" : s;
+    }
+  };
+} // namespace sable::mpm
+
+#endif
