@@ -41,6 +41,11 @@ periodic_boundaries):
   into their neighbours to 0.22-0.24 s, and free grains reach 0.35-0.41 s
   (measured with either contact model, and before the grid was periodic
   too); the least value at each output is printed;
+- contrib/validation/a5_shear.py runs on the output: at 30% shear the
+  column-averaged vertical displacement, as a fraction of the wall's, is
+  within 0.05 of 0 in the column at the fixed wall and between 0.9 and
+  1.05 at the moving wall (those columns hold mostly the walls' grains),
+  and between -0.05 and 1.05 everywhere; its pictures are written;
 - plastic work and contact friction work are positive and never decrease
   (both are dissipation: a decrease beyond round-off, 1e-12 of the final
   value, would be energy made from nothing)."""
@@ -285,6 +290,25 @@ if True:
         check(f"scene: {name} positive and never decreasing",
               series[-1] > 0 and np.all(np.diff(series) >= -1e-12 * series[-1]),
               f"final {series[-1]:.4g} J/m, largest decrease {-min(np.diff(series).min(), 0):.2g}")
+    # the postprocessing script on this run
+    post = os.path.join(WORK, "a5_shear")
+    result = subprocess.run(["/usr/bin/python3", os.path.join(SOURCE, "contrib", "validation", "a5_shear.py"),
+                             os.path.join(directory, "output"), "--work", post, "--width", str(width),
+                             "--period", str(PERIOD), "--levels", "0.1", "0.3", "--bins", "10"],
+                            capture_output=True, text=True)
+    print(result.stdout.strip())
+    check("a5_shear.py runs on the scene's output", result.returncode == 0, result.stderr.strip()[-300:])
+    if result.returncode == 0:
+        with open(os.path.join(post, "profiles.csv")) as f:
+            profile = [(float(r["shear"]), float(r["fraction_of_wall"])) for r in csv.DictReader(f)]
+        last = [fr for sh, fr in profile if abs(sh - 0.3) < 0.01]
+        check("a5_shear.py: at 30% shear the profile goes from the fixed wall's 0 to the moving wall's 1 "
+              "(outer columns, mostly held grains: within 0.05 and 0.1)",
+              len(last) == 10 and abs(last[0]) <= 0.05 and 0.9 <= last[-1] <= 1.05 and
+              all(-0.05 <= f <= 1.05 for f in last), " ".join(f"{f:.3f}" for f in last))
+        check("a5_shear.py: the pictures are written",
+              all(os.path.exists(os.path.join(post, n)) for n in ("profiles.png", "energy.png",
+                                                                   "stress_difference_30.png")))
     print(f"energy: boundary work {rows[-1]['boundary_work']:.4g} J/m, kinetic {rows[-1]['kinetic_energy']:.4g}, "
           f"strain {rows[-1]['strain_energy']:.4g}, plastic {plastic[-1]:.4g}, friction {friction[-1]:.4g}, "
           f"energy drift {rows[-1]['energy_drift']:.4f}")

@@ -17,6 +17,10 @@ point's mass moment taken at the wrong image (the contact detection reads
 it) or a point lost at the seam changes them by 1e-3 or more within a few
 steps. Points are counted at every step (none lost at the seams).
 
+Two threads give the one-thread statistics of the seam run to 1e-9 (the
+cells at the upper faces share nodes with those at the lower faces: the
+thread colouring must see it).
+
 On two ranks (the partition cuts the seams, the nodes there are summed
 across ranks) the seam run without contact (one velocity field: the disks
 merge) gives the one-rank statistics to 1e-9. With contact two ranks are
@@ -99,6 +103,8 @@ _, output, seam = run("seam", entries, bodies)
 contact = max(r["contact_heat"] for r in middle)
 check("the disks meet and slip (contact heat > 0)", contact > 0, f"{contact:.4g} J")
 columns_agree("moved onto the seams", middle, seam, shift)
+_, _, threads = run("seam_2_threads", entries, bodies, args=("--threads", "2"))
+columns_agree("on the seams, two threads", seam, threads, (0, 0))
 single = dict(entries, **{"Contact/Model": "none"})
 _, _, one_rank = run("seam_single_field", single, bodies)
 _, _, ranks = run("seam_single_field_2_ranks", single, bodies, ranks=2)
