@@ -189,6 +189,7 @@ namespace sable::mpm
       parameters.output_directory + "/statistics.csv",
       bodies_with_columns,
       contact != nullptr,
+      prescribed_velocities.any(),
       parameters.contact.reported_pairs,
       write && Utilities::MPI::this_mpi_process(communicator) == 0,
       append,
@@ -486,7 +487,13 @@ namespace sable::mpm
           nodal_fields.n_owned_nodes());
         // a driver's work enters the energy balance as a moving wall's
         if (prescribed_velocities.any())
-          state.boundary_work += Utilities::MPI::sum(contact->get_driver_work(), communicator);
+          {
+            state.boundary_work += Utilities::MPI::sum(contact->get_driver_work(), communicator);
+            const Tensor<1, dim> impulse =
+              Utilities::MPI::sum(contact->get_driver_impulse(), communicator);
+            for (unsigned int d = 0; d < dim; ++d)
+              state.driver_impulse[d] += impulse[d];
+          }
       }
   }
 
@@ -636,6 +643,8 @@ namespace sable::mpm
                                                        contact ? &contact->get_model() : nullptr,
                                                        grid.periodicity());
     s.wall_heat    = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
+    for (unsigned int d = 0; d < dim; ++d)
+      s.driver_impulse[d] = state.driver_impulse[d];
     s.energy_drift     = energy_drift(s);
     return s;
   }

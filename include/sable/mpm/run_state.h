@@ -2,6 +2,7 @@
 #define sable_mpm_run_state_h
 
 #include <algorithm>
+#include <array>
 
 namespace sable::mpm
 {
@@ -23,6 +24,8 @@ namespace sable::mpm
 
     /// work done by moving walls so far
     double boundary_work = 0;
+    /// impulse the bodies of prescribed velocity gave the others so far
+    std::array<double, 3> driver_impulse = {{0, 0, 0}};
     /// kinetic + strain energy and gravitational energy at the start
     double initial_energy         = 0;
     double initial_gravity_energy = 0;
@@ -73,7 +76,7 @@ namespace sable::mpm
     serialize(Archive &ar, const unsigned int)
     {
       ar &time &time_step &step_number &max_signal_speed;
-      ar &boundary_work &initial_energy &initial_gravity_energy &energy_floor &
+      ar &boundary_work &driver_impulse &initial_energy &initial_gravity_energy &energy_floor &
         largest_gravity_release &resolved_energy;
       ar &next_output_time &output_counter &statistics_row_due;
       ar &adaptations_without_change &travel_since_adaptation;

@@ -94,7 +94,10 @@ namespace sable::mpm
       256);
     const bool drivers = prescribed != nullptr && prescribed->any();
     if (momentum_update)
-      driver_work = 0;
+      {
+        driver_work    = 0;
+        driver_impulse = 0;
+      }
     if (drivers)
       hold_drivers(true, false, n_owned_nodes);
     if (momentum_update ? parameters.on_momentum_update : parameters.on_strain_update)
@@ -127,7 +130,11 @@ namespace sable::mpm
               // the impulse the driver gave the others: minus its own
               // momentum change
               if (!before && record_work && node < n_owned_nodes)
-                driver_work += r->mass * ((velocity - r->new_velocity) * velocity);
+                {
+                  const Tensor<1, dim> impulse = r->mass * (velocity - r->new_velocity);
+                  driver_work += impulse * velocity;
+                  driver_impulse += impulse;
+                }
               r->mass *= factor;
               r->momentum *= factor;
               r->mass_position *= factor;

@@ -16,6 +16,7 @@ namespace sable::mpm
     const std::string &                                       filename,
     const std::vector<unsigned int> &                         bodies,
     const bool                                                with_contact,
+    const bool                                                with_drivers,
     const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
     const bool                                                write,
     const bool                                                append,
@@ -42,6 +43,10 @@ namespace sable::mpm
     add("energy_drift", [](const Row &r) { return r.statistics.energy_drift; });
     for (unsigned int d = 0; d < dim; ++d)
       add("momentum_" + axes.substr(d, 1), [d](const Row &r) { return r.statistics.momentum[d]; });
+    if (with_drivers)
+      for (unsigned int d = 0; d < dim; ++d)
+        add("driver_impulse_" + axes.substr(d, 1),
+            [d](const Row &r) { return r.statistics.driver_impulse[d]; });
     for (const unsigned int b : bodies)
       {
         const std::string body = "body" + std::to_string(b);

@@ -151,6 +151,14 @@ namespace sable::mpm
       return driver_work;
     }
 
+    /// Impulse the drivers gave the other bodies in the last
+    /// momentum-update pass (this rank's nodes).
+    const Tensor<1, dim> &
+    get_driver_impulse() const
+    {
+      return driver_impulse;
+    }
+
     const BodyFields<dim> &
     get_fields() const
     {
@@ -184,6 +192,7 @@ namespace sable::mpm
 
     const PrescribedVelocities<dim> *prescribed  = nullptr;
     double                           driver_work = 0;
+    Tensor<1, dim>                   driver_impulse;
 
     const ContactParameters parameters;
     const bool              with_traction;

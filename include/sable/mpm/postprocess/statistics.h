@@ -33,6 +33,9 @@ namespace sable::mpm
     double                      plastic_work = 0;
     /// friction heat of the walls so far (BoundaryConditions::frictional_heat)
     double                      wall_heat = 0;
+    /// impulse the bodies of prescribed velocity gave the others so far
+    /// (RunState::driver_impulse)
+    Tensor<1, dim>              driver_impulse;
     /**
      * The energy balance: kinetic + strain + gravitational energy + plastic
      * work + wall and contact heat - boundary work, less its value at the
@@ -75,6 +78,7 @@ namespace sable::mpm
     StatisticsFile(const std::string &filename,
                    const std::vector<unsigned int> &bodies,
                    const bool         with_contact,
+                   const bool         with_drivers,
                    const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
                    const bool         write,
                    const bool         append       = false,
