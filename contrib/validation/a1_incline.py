@@ -14,6 +14,7 @@ work directory; doc/validation for the report).
 
 Usage: contrib/validation/a1_incline.py [--sable build/sable]
            [--work DIR] [--end-time T] [--output-dir DIR]
+           [--set "Section/Entry=value" ...]
 The scene files are the middle-resolution ones in prm/; the other
 resolutions change only `Grid/Subdivisions` (and the output directory)."""
 import argparse
@@ -64,6 +65,10 @@ def read_csv(path):
         return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
 
 
+# --set: entries given to every run (e.g. "Grid/Shape functions=gimp")
+EXTRA_SETTINGS = []
+
+
 def run(sable, prm_path, directory, cells, end_time=None):
     """Run one case at one resolution; return (rows, wall time, points)."""
     name = os.path.splitext(os.path.basename(prm_path))[0]
@@ -75,7 +80,8 @@ def run(sable, prm_path, directory, cells, end_time=None):
         f.write(text)
     # every step's row: the analysis samples the trajectory
     result = subprocess.run([sable, os.path.basename(scene), "--overwrite",
-                             "--set", "Output/Statistics interval=1"], cwd=directory,
+                             "--set", "Output/Statistics interval=1"] +
+                            [a for entry in EXTRA_SETTINGS for a in ("--set", entry)], cwd=directory,
                             capture_output=True, text=True)
     output = result.stdout + result.stderr
     if result.returncode != 0:
@@ -129,8 +135,15 @@ def main():
     parser.add_argument("--output-dir", default=None,
                         help="where the table and figure go (default: the work "
                              "directory; doc/validation updates the report)")
+    parser.add_argument("--set", action="append", default=[], metavar="ENTRY=VALUE",
+                        help='an entry for every run, e.g. "Grid/Shape functions=gimp"')
+    parser.add_argument("--cells", default=",".join(map(str, CELLS_PER_DIAMETER)),
+                        help="cells per diameter (default 4,8,16)")
     args = parser.parse_args()
     args.output_dir = args.output_dir or args.work
+    EXTRA_SETTINGS.extend(args.set)
+    global CELLS_PER_DIAMETER
+    CELLS_PER_DIAMETER = tuple(int(n) for n in args.cells.split(","))
     require_matplotlib()
     sable = os.path.abspath(args.sable)
     work = os.path.abspath(args.work)

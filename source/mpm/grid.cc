@@ -4,6 +4,8 @@
 
 #include <sable/mpm/grid.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace sable::mpm
@@ -36,10 +38,12 @@ namespace sable::mpm
   } // namespace
 
   template <int dim>
-  Grid<dim>::Grid(const parallel::distributed::Triangulation<dim> &triangulation)
+  Grid<dim>::Grid(const parallel::distributed::Triangulation<dim> &triangulation,
+                  const ShapeFunctions                             shape_functions)
     : triangulation(triangulation)
     , fe(1)
     , dof_handler(triangulation)
+    , shape_functions(shape_functions)
   {}
 
   template <int dim>
@@ -70,6 +74,7 @@ namespace sable::mpm
 
     cells.assign(triangulation.n_active_cells(), CellData());
     hanging_cells.clear();
+    candidate_nodes.clear();
     double h_min = std::numeric_limits<double>::max();
     Tensor<1, dim> huge;
     for (unsigned int d = 0; d < dim; ++d)
@@ -113,6 +118,96 @@ namespace sable::mpm
             }
         }
     min_cell_size = Utilities::MPI::min(h_min, triangulation.get_communicator());
+    if (shape_functions == ShapeFunctions::gimp)
+      setup_lattice();
+  }
+
+  template <int dim>
+  void
+  Grid<dim>::setup_lattice()
+  {
+    AssertThrow(Utilities::MPI::n_mpi_processes(triangulation.get_communicator()) == 1,
+                ExcMessage("GIMP shape functions run on one MPI rank (threads are "
+                           "allowed): a point reaches the nodes of the cells next to "
+                           "its own, beyond the ghost layer of a distributed grid."));
+    const auto first_cell = triangulation.begin_active();
+    Tensor<1, dim> h;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        h[d]             = first_cell->extent_in_direction(d);
+        lattice_cells[d] = static_cast<int>(std::lround(periodic.period(d) / h[d]));
+      }
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (unsigned int d = 0; d < dim; ++d)
+        AssertThrow(std::abs(cell->extent_in_direction(d) - h[d]) <= 1e-10 * h[d],
+                    ExcMessage("GIMP shape functions need a uniform grid: all cells "
+                               "of one size, no local refinement."));
+
+    const auto lattice_index = [&](const Point<dim> &x) {
+      std::array<int, dim> index;
+      for (unsigned int d = 0; d < dim; ++d)
+        index[d] = static_cast<int>(std::lround((x[d] - periodic.lower[d]) / h[d]));
+      return index;
+    };
+    const auto flat = [&](const std::array<int, dim> &index) {
+      int f = 0;
+      for (int d = dim - 1; d >= 0; --d)
+        f = f * (lattice_cells[d] + 1) + index[d];
+      return f;
+    };
+    int n_lattice = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_lattice *= lattice_cells[d] + 1;
+    lattice_nodes.assign(n_lattice, numbers::invalid_unsigned_int);
+    // each lattice point's node; on a periodic axis the upper face's
+    // vertices are images of the lower face's and are never looked up
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          CellData &data = cells[cell->active_cell_index()];
+          data.lattice   = lattice_index(cell->vertex(0));
+          for (unsigned int v = 0; v < nodes_per_cell; ++v)
+            {
+              const std::array<int, dim> index = lattice_index(cell->vertex(v));
+              bool on_image_face = false;
+              for (unsigned int d = 0; d < dim; ++d)
+                on_image_face = on_image_face ||
+                                (periodic.periodic[d] && index[d] == lattice_cells[d]);
+              if (!on_image_face)
+                lattice_nodes[flat(index)] = data.nodes[v];
+            }
+        }
+
+    // the nodes a cell's points may reach: 4 per direction around it
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          CellData &data      = cells[cell->active_cell_index()];
+          data.first_candidate = candidate_nodes.size();
+          const unsigned int n_offsets = dim == 2 ? 16 : 64;
+          for (unsigned int o = 0; o < n_offsets; ++o)
+            {
+              std::array<int, dim> index;
+              bool                 inside = true;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  index[d] = data.lattice[d] - 1 + static_cast<int>((o >> (2 * d)) & 3u);
+                  if (periodic.periodic[d])
+                    index[d] = (index[d] + lattice_cells[d]) % lattice_cells[d];
+                  else
+                    inside = inside && index[d] >= 0 && index[d] <= lattice_cells[d];
+                }
+              if (!inside)
+                continue;
+              const unsigned int node = lattice_nodes[flat(index)];
+              AssertThrow(node != numbers::invalid_unsigned_int, ExcInternalError());
+              if (std::find(candidate_nodes.begin() + data.first_candidate,
+                            candidate_nodes.end(),
+                            node) == candidate_nodes.end())
+                candidate_nodes.push_back(node);
+            }
+          data.n_candidates = candidate_nodes.size() - data.first_candidate;
+        }
   }
 
   template <int dim>

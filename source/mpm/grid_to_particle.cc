@@ -79,7 +79,10 @@ namespace sable::mpm
                       props[Layout::velocity + d] = grid_velocity[d];
                   }
                 else
-                  grid.evaluate(data, particle.get_reference_location(), shape);
+                  grid.evaluate(data,
+                                particle.get_reference_location(),
+                                props[Layout::initial_volume],
+                                shape);
                 for (unsigned int v = 0; v < (driven ? 0 : shape.n_nodes); ++v)
                   {
                     const unsigned int node  = shape.nodes[v];

@@ -22,6 +22,8 @@ namespace sable::mpm
                                                    {"MUSL", UpdateScheme::musl}};
     const NamedChoice<OutputFormat> output_formats{{"vtu", OutputFormat::vtu},
                                                    {"hdf5", OutputFormat::hdf5}};
+    const NamedChoice<ShapeFunctions> shape_function_kinds{{"linear", ShapeFunctions::linear},
+                                                           {"gimp", ShapeFunctions::gimp}};
   } // namespace
 
   template <int dim>
@@ -131,6 +133,18 @@ namespace sable::mpm
                       "these faces (they are seeded wrapped). Needs at least "
                       "3 cells along the axis; its faces take no boundary "
                       "condition.");
+    prm.declare_entry("Shape functions",
+                      "linear",
+                      shape_function_kinds.pattern(),
+                      "How points and nodes exchange mass, momentum and force. "
+                      "linear: the cell's linear functions (plain MPM; a "
+                      "point's weights and their gradients jump as it crosses "
+                      "a cell face). gimp: uniform GIMP (Bardenhagen & Kober "
+                      "2004), each point spread over a square (cube) of its "
+                      "seeding spacing, which makes the weights and gradients "
+                      "continuous; a point then reaches up to 3 nodes per "
+                      "direction. gimp needs a uniform grid (no Mesh "
+                      "refinement) and one MPI rank (threads are allowed).");
     prm.leave_subsection();
 
     prm.enter_subsection("Boundary conditions");
@@ -303,6 +317,10 @@ namespace sable::mpm
     for (unsigned int b = 0; b < p.bodies.size(); ++b)
       p.bodies[b].check(p.bodies[b].name(b));
     p.refinement.check();
+    check_input(p.shape_functions == ShapeFunctions::linear || !p.refinement.enabled(),
+                "Grid/Shape functions",
+                "gimp",
+                "linear on a grid with Mesh refinement (GIMP needs a uniform grid)");
   }
 
   template <int dim>
@@ -353,6 +371,7 @@ namespace sable::mpm
       grid.subdivisions.push_back(n);
     for (const int id : Utilities::string_to_int(Utilities::split_string_list(prm.get("Boundary ids"))))
       grid.face_ids.push_back(id);
+    p.shape_functions = shape_function_kinds.value(prm.get("Shape functions"));
     for (const std::string &axis : Utilities::split_string_list(prm.get("Periodic axes")))
       {
         const unsigned int d = axis[0] - 'x';

@@ -83,7 +83,10 @@ namespace sable::mpm
       for (const auto &particle : cell.particles)
         {
           const ArrayView<const double> props = particle.get_properties();
-          grid.evaluate(*cell.data, particle.get_reference_location(), shape);
+          grid.evaluate(*cell.data,
+                        particle.get_reference_location(),
+                        props[Layout::initial_volume],
+                        shape);
           const Tensor<2, dim>          volume_stress =
             momentum_update ? Layout::volume_stress(props) : Tensor<2, dim>();
           if (near_contact)

@@ -50,7 +50,7 @@ namespace sable::mpm
             TimerOutput::never,
             TimerOutput::wall_times)
     , parallel(Utilities::MPI::n_mpi_processes(communicator) > 1)
-    , grid(triangulation)
+    , grid(triangulation, parameters.shape_functions)
     , boundary_conditions(parameters.boundaries)
     , grid_to_particle(grid, nodal_fields, body_wave_speed, velocity_gradients)
     , particle_series(parameters.output_directory, "particles", parameters.output_format)
@@ -150,6 +150,13 @@ namespace sable::mpm
           contact->set_prescribed_velocities(&prescribed_velocities);
       }
 
+    // a point reaches the nodes of its cell's neighbours, beyond the ghost
+    // layer that the transfers and contact rely on
+    check_input(!parallel || parameters.shape_functions == ShapeFunctions::linear,
+                "Grid/Shape functions",
+                "gimp",
+                "linear on more than one MPI rank (run GIMP on one rank; threads "
+                "are allowed)");
     if (parameters.refinement.enabled())
       mesh_refinement = std::make_unique<MeshRefinement<dim>>(parameters.refinement,
                                                               parameters.boundaries,

@@ -30,7 +30,9 @@
 //  - the same on adapted grids (a refined region and refined body surfaces,
 //    re-adapted every 3 steps): the folded hanging-node shape functions keep
 //    the partition of unity and sum_k grad N_k = 0, so the same round-off
-//    bounds hold; the grid has hanging vertices and changes during the run.
+//    bounds hold; the grid has hanging vertices and changes during the run;
+//  - the same with GIMP shape functions (one rank), whose weights reach the
+//    nodes of the neighbouring cells.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -88,7 +90,7 @@ namespace
   template <int dim>
   void
   run_case(const sable::mpm::UpdateScheme scheme, const double pic_fraction,
-           const bool with_gravity, const bool adaptive = false)
+           const bool with_gravity, const bool adaptive = false, const bool gimp = false)
   {
     using namespace sable::mpm;
     const MPI_Comm     communicator = MPI_COMM_WORLD;
@@ -97,7 +99,8 @@ namespace
                              (scheme == UpdateScheme::usl ? "USL" : "MUSL") + ", PIC " +
                              std::to_string(pic_fraction).substr(0, 3) +
                              (with_gravity ? ", gravity" : ", no gravity") +
-                             (adaptive ? ", adaptive grid" : "") + ", " +
+                             (adaptive ? ", adaptive grid" : "") + (gimp ? ", GIMP" : "") +
+                             ", " +
                              std::to_string(n_ranks) + " rank(s): ";
 
     const unsigned int  n_cells = dim == 2 ? 32 : 10;
@@ -121,6 +124,7 @@ namespace
     parameters.pic_fraction     = pic_fraction;
     parameters.output_directory = "";
     parameters.print_timings    = false;
+    parameters.shape_functions  = gimp ? ShapeFunctions::gimp : ShapeFunctions::linear;
     if (with_gravity)
       {
         parameters.gravity[1] = -9.81;
@@ -311,5 +315,13 @@ main(int argc, char **argv)
   run_case<2>(UpdateScheme::musl, 0., true, true);
   run_case<3>(UpdateScheme::musl, 0., true, true);
   run_case<2>(UpdateScheme::usl, 0.5, true, true);
+  // GIMP (one rank only): its weights keep the partition of unity and
+  // sum_k grad N_k = 0, next to the grid's faces too
+  if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1)
+    for (const UpdateScheme scheme : {UpdateScheme::usl, UpdateScheme::musl})
+      {
+        run_case<2>(scheme, 0., true, false, true);
+        run_case<3>(scheme, 0.5, true, false, true);
+      }
   return sable_tests::exit_code();
 }

@@ -7,10 +7,13 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_cartesian.h>
 
+#include <sable/mpm/gimp_shape.h>
 #include <sable/mpm/periodicity.h>
 #include <sable/mpm/q1_shape.h>
 
 #include <array>
+#include <cmath>
+#include <limits>
 #include <utility>
 #include <memory>
 #include <vector>
@@ -48,6 +51,11 @@ namespace sable::mpm
    * folds its shape functions onto nodes one period away, and its table
    * carries for each node the shift (whole periods) that brings a point of
    * the cell next to that node, for sums weighted by position.
+   *
+   * With ShapeFunctions::gimp the grid must be uniform (no refinement) and
+   * on one MPI rank: the nodes form a lattice, and a point reaches the
+   * three nodes per direction nearest to it, which may be vertices of the
+   * neighbouring cells (or, across a periodic seam, their images).
    */
   template <int dim>
   class Grid
@@ -66,6 +74,11 @@ namespace sable::mpm
       /// index into the table of cells with hanging vertices, or
       /// numbers::invalid_unsigned_int
       unsigned int hanging = numbers::invalid_unsigned_int;
+      /// GIMP: the lattice index of vertex 0, and where the nodes the
+      /// cell's points may reach (4 per direction) start in the table
+      std::array<int, dim> lattice{};
+      unsigned int         first_candidate = 0;
+      unsigned int         n_candidates    = 0;
     };
 
     /// The folding of a cell with hanging vertices, sparse: vertex v
@@ -105,11 +118,20 @@ namespace sable::mpm
       }
 
       Q1Shape<dim>                                   vertex;
+      std::array<unsigned int, max_nodes_per_cell>   stencil_nodes;
+      std::array<Tensor<1, dim>, max_nodes_per_cell> stencil_shifts;
       std::array<double, max_nodes_per_cell>         folded_values;
       std::array<Tensor<1, dim>, max_nodes_per_cell> folded_gradients;
     };
 
-    explicit Grid(const parallel::distributed::Triangulation<dim> &triangulation);
+    explicit Grid(const parallel::distributed::Triangulation<dim> &triangulation,
+                  const ShapeFunctions shape_functions = ShapeFunctions::linear);
+
+    ShapeFunctions
+    get_shape_functions() const
+    {
+      return shape_functions;
+    }
 
     /// Distribute nodes and rebuild the caches (after any mesh change).
     void
@@ -125,16 +147,27 @@ namespace sable::mpm
     std::pair<const unsigned int *, unsigned int>
     cell_nodes(const CellData &data) const
     {
+      if (data.n_candidates > 0)
+        return {candidate_nodes.data() + data.first_candidate, data.n_candidates};
       if (data.hanging == numbers::invalid_unsigned_int)
         return {data.nodes.data(), nodes_per_cell};
       const HangingCell &h = hanging_cells[data.hanging];
       return {h.nodes.data(), h.n_nodes};
     }
 
-    /// Evaluate the cell's shape functions at reference point @p xi.
+    /// Evaluate the cell's shape functions at reference point @p xi for a
+    /// point of initial volume @p point_volume (which sets its GIMP domain).
     inline void
-    evaluate(const CellData &data, const Point<dim> &xi, Shape &shape) const
+    evaluate(const CellData &  data,
+             const Point<dim> &xi,
+             const double      point_volume,
+             Shape &           shape) const
     {
+      if (shape_functions == ShapeFunctions::gimp)
+        {
+          evaluate_gimp(data, xi, point_volume, shape);
+          return;
+        }
       shape.vertex.evaluate(xi, data.inverse_h);
       if (data.hanging == numbers::invalid_unsigned_int)
         {
@@ -234,6 +267,16 @@ namespace sable::mpm
     const parallel::distributed::Triangulation<dim> &triangulation;
 
   private:
+    inline void
+    evaluate_gimp(const CellData &  data,
+                  const Point<dim> &xi,
+                  const double      point_volume,
+                  Shape &           shape) const;
+
+    /// The lattice of nodes of a uniform grid and each cell's candidates.
+    void
+    setup_lattice();
+
     HangingCell
     fold_hanging_vertices(const typename DoFHandler<dim>::active_cell_iterator &cell,
                           const std::vector<types::global_dof_index> &         dofs,
@@ -249,7 +292,99 @@ namespace sable::mpm
     std::vector<Point<dim>>     positions;
     Periodicity<dim>            periodic;
     double                min_cell_size = 0.;
+
+    const ShapeFunctions shape_functions;
+    /// GIMP: cells per direction, and the node at each lattice point
+    /// (x fastest; numbers::invalid_unsigned_int where constrained)
+    std::array<int, dim>      lattice_cells{};
+    std::vector<unsigned int> lattice_nodes;
+    std::vector<unsigned int> candidate_nodes;
   };
+
+  template <int dim>
+  inline void
+  Grid<dim>::evaluate_gimp(const CellData &  data,
+                           const Point<dim> &xi,
+                           const double      point_volume,
+                           Shape &           shape) const
+  {
+    const double spacing = dim == 2 ? std::sqrt(point_volume) : std::cbrt(point_volume);
+    // per direction: the lattice index, the image shift, the weight and its
+    // derivative of the (at most three) nodes that reach the point
+    int          index[dim][3];
+    double       shift[dim][3], value[dim][3], derivative[dim][3];
+    unsigned int n[dim];
+    bool         shifted = false;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double infinity = std::numeric_limits<double>::infinity();
+        const double half     = std::min(0.5 * spacing * data.inverse_h[d], 0.5);
+        const GimpWeights1D w = gimp_weights_1d(
+          xi[d],
+          half,
+          periodic.periodic[d] ? -infinity : -double(data.lattice[d]),
+          periodic.periodic[d] ? infinity : double(lattice_cells[d] - data.lattice[d]));
+        const int first = data.lattice[d] + first_gimp_node(xi[d]);
+        n[d]            = 0;
+        for (int k = 0; k < 3; ++k)
+          if (w.value[k] != 0. || w.derivative[k] != 0.)
+            {
+              int    i = first + k;
+              double s = 0;
+              if (periodic.periodic[d])
+                {
+                  // the node's image inside the lattice; the point moves
+                  // the other way to lie next to it
+                  if (i < 0)
+                    i += lattice_cells[d], s = periodic.period(d);
+                  else if (i >= lattice_cells[d])
+                    i -= lattice_cells[d], s = -periodic.period(d);
+                  shifted = shifted || s != 0.;
+                }
+              index[d][n[d]]      = i;
+              shift[d][n[d]]      = s;
+              value[d][n[d]]      = w.value[k];
+              derivative[d][n[d]] = w.derivative[k] * data.inverse_h[d];
+              ++n[d];
+            }
+      }
+    const int    stride_y = lattice_cells[0] + 1;
+    const int    stride_z = stride_y * (dim == 3 ? lattice_cells[1] + 1 : 1);
+    unsigned int k        = 0;
+    for (unsigned int c = 0; c < (dim == 3 ? n[dim - 1] : 1u); ++c)
+      for (unsigned int b = 0; b < n[1]; ++b)
+        for (unsigned int a = 0; a < n[0]; ++a, ++k)
+          {
+            int    flat = index[0][a] + stride_y * index[1][b];
+            double v    = value[0][a] * value[1][b];
+            Tensor<1, dim> g;
+            g[0] = derivative[0][a] * value[1][b];
+            g[1] = value[0][a] * derivative[1][b];
+            if constexpr (dim == 3)
+              {
+                flat += stride_z * index[2][c];
+                g[0] *= value[2][c];
+                g[1] *= value[2][c];
+                g[2] = v * derivative[2][c];
+                v *= value[2][c];
+              }
+            shape.stencil_nodes[k]    = lattice_nodes[flat];
+            shape.folded_values[k]    = v;
+            shape.folded_gradients[k] = g;
+            if (shifted)
+              {
+                shape.stencil_shifts[k][0] = shift[0][a];
+                shape.stencil_shifts[k][1] = shift[1][b];
+                if constexpr (dim == 3)
+                  shape.stencil_shifts[k][2] = shift[2][c];
+              }
+          }
+    shape.n_nodes   = k;
+    shape.nodes     = shape.stencil_nodes.data();
+    shape.values    = shape.folded_values.data();
+    shape.gradients = shape.folded_gradients.data();
+    shape.shifts    = shifted ? shape.stencil_shifts.data() : nullptr;
+  }
 } // namespace sable::mpm
 
 #endif

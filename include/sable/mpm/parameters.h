@@ -10,6 +10,7 @@
 #include <sable/mpm/bodies/body_parameters.h>
 #include <sable/mpm/boundaries/boundary_parameters.h>
 #include <sable/mpm/contact/contact_parameters.h>
+#include <sable/mpm/gimp_shape.h>
 #include <sable/mpm/materials/material_parameters.h>
 #include <sable/mpm/mesh_refinement_parameters.h>
 
@@ -68,6 +69,9 @@ namespace sable::mpm
     /// damping) for at most this many steps, then give them their initial
     /// velocities; 0 = start as seeded (Solver/Settling steps).
     unsigned int settling_steps = 0;
+
+    /// Grid/Shape functions: linear, or GIMP on a uniform grid on one rank.
+    ShapeFunctions shape_functions = ShapeFunctions::linear;
 
     Tensor<1, dim> gravity = {};
 

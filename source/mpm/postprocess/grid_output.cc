@@ -41,7 +41,10 @@ namespace sable::mpm
           for (const auto &particle : particles.particles_in_cell(cell))
             {
               const auto props = particle.get_properties();
-              grid.evaluate(data, particle.get_reference_location(), shape);
+              grid.evaluate(data,
+                            particle.get_reference_location(),
+                            props[Layout::initial_volume],
+                            shape);
               for (unsigned int k = 0; k < shape.n_nodes; ++k)
                 {
                   double *const node   = values + shape.nodes[k] * n_components;

@@ -39,7 +39,10 @@ namespace sable::mpm
           const double       volume =
             determinant(Layout::deformation_gradient(props)) * props[Layout::initial_volume];
           const SymmetricTensor<2, 3> sigma = Layout::stress_tensor(props);
-          grid.evaluate(*cells[c].data, particle.get_reference_location(), shape);
+          grid.evaluate(*cells[c].data,
+                        particle.get_reference_location(),
+                        props[Layout::initial_volume],
+                        shape);
           for (unsigned int v = 0; v < shape.n_nodes; ++v)
             if (shape.values[v] != 0.)
               {
@@ -53,9 +56,12 @@ namespace sable::mpm
     for (unsigned int c = 0; c < cells.n_owned(); ++c)
       for (const auto &particle : cells[c].particles)
         {
-          const unsigned int body =
-            static_cast<unsigned int>(particle.get_properties()[Layout::body]);
-          grid.evaluate(*cells[c].data, particle.get_reference_location(), shape);
+          const auto         props = particle.get_properties();
+          const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
+          grid.evaluate(*cells[c].data,
+                        particle.get_reference_location(),
+                        props[Layout::initial_volume],
+                        shape);
           SymmetricTensor<2, 3> sigma;
           double                weight = 0;
           for (unsigned int v = 0; v < shape.n_nodes; ++v)

@@ -1,0 +1,119 @@
+#ifndef sable_mpm_gimp_shape_h
+#define sable_mpm_gimp_shape_h
+
+#include <algorithm>
+#include <cmath>
+
+namespace sable::mpm
+{
+  /// The functions that carry the points' data to the grid's nodes and back.
+  enum class ShapeFunctions
+  {
+    /// the cell's tensor-product linear functions (plain MPM)
+    linear,
+    /// uniform GIMP (gimp_weights_1d()): each point averages the linear
+    /// functions over its domain of one seeding spacing; uniform grids on
+    /// one MPI rank
+    gimp
+  };
+
+  /**
+   * One direction of the uniform generalized interpolation material point
+   * (uGIMP) weights of Bardenhagen & Kober (2004): a point of half-length
+   * l (its seeding spacing over two, in cell units) averages each node's
+   * linear hat function over its domain [xi - l, xi + l],
+   *
+   *   S_j(xi) = 1/(b - a) int_a^b hat_j(x) dx,
+   *
+   * with the domain clipped to the grid, [a, b] = [max(xi - l, lower),
+   * min(xi + l, upper)], so that the weights keep the partition of unity
+   * (and their derivatives sum to zero) next to the grid's faces. The
+   * weights and their first derivatives are continuous as the point
+   * crosses a cell face, where those of the linear (l = 0) functions jump:
+   * that jump is the cell-crossing noise of plain MPM.
+   *
+   * Coordinates are in units of the cell extent, relative to the lower
+   * vertex of the point's cell (0 <= xi <= 1). With l <= 1/2 at most three
+   * nodes reach the point: those at first, first + 1, first + 2, with
+   * first = -1 for xi < 1/2 and 0 otherwise (first_gimp_node()).
+   */
+  struct GimpWeights1D
+  {
+    double value[3];
+    /// d value / d xi (in cell units: divide by the cell extent)
+    double derivative[3];
+  };
+
+  /// The lowest of the three nodes (relative to the cell's lower vertex)
+  /// that may reach a point at @p xi.
+  inline int
+  first_gimp_node(const double xi)
+  {
+    return xi < 0.5 ? -1 : 0;
+  }
+
+  namespace internal
+  {
+    /// The hat function centred at 0, of support (-1, 1).
+    inline double
+    hat(const double x)
+    {
+      return std::max(0., 1. - std::abs(x));
+    }
+
+    /// int_{-inf}^x hat.
+    inline double
+    hat_integral(const double x)
+    {
+      if (x <= -1.)
+        return 0.;
+      if (x <= 0.)
+        return 0.5 * (x + 1.) * (x + 1.);
+      if (x < 1.)
+        return 1. - 0.5 * (1. - x) * (1. - x);
+      return 1.;
+    }
+  } // namespace internal
+
+  /**
+   * The three weights at @p xi of a point of half-length @p l, on a line
+   * of nodes whose extreme ones lie at @p lower and @p upper (cell units
+   * relative to the cell's lower vertex; pass -infinity and +infinity on a
+   * periodic axis). Nodes beyond lower or upper get weight 0.
+   */
+  inline GimpWeights1D
+  gimp_weights_1d(const double xi, const double l, const double lower, const double upper)
+  {
+    GimpWeights1D w;
+    const int     first = first_gimp_node(xi);
+    const double  a     = std::max(xi - l, lower);
+    const double  b     = std::min(xi + l, upper);
+    const double  width = b - a;
+    if (!(width > 1e-12))
+      {
+        // a point without extent: the linear functions
+        for (int k = 0; k < 3; ++k)
+          {
+            const double x = xi - (first + k);
+            w.value[k]      = internal::hat(x);
+            w.derivative[k] = std::abs(x) < 1. ? (x > 0 ? -1. : 1.) : 0.;
+          }
+        return w;
+      }
+    // how the ends move with the point: not at all where clipped
+    const double da = xi - l > lower ? 1. : 0.;
+    const double db = xi + l < upper ? 1. : 0.;
+    for (int k = 0; k < 3; ++k)
+      {
+        const double node = first + k;
+        w.value[k] =
+          (internal::hat_integral(b - node) - internal::hat_integral(a - node)) / width;
+        w.derivative[k] = (internal::hat(b - node) * db - internal::hat(a - node) * da -
+                           w.value[k] * (db - da)) /
+                          width;
+      }
+    return w;
+  }
+} // namespace sable::mpm
+
+#endif
