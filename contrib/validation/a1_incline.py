@@ -127,6 +127,7 @@ def require_matplotlib():
 
 
 def main():
+    global CELLS_PER_DIAMETER
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sable", default=os.path.join(ROOT, "build", "sable"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "a1_incline.work"))
@@ -142,7 +143,6 @@ def main():
     args = parser.parse_args()
     args.output_dir = args.output_dir or args.work
     EXTRA_SETTINGS.extend(args.set)
-    global CELLS_PER_DIAMETER
     CELLS_PER_DIAMETER = tuple(int(n) for n in args.cells.split(","))
     require_matplotlib()
     sable = os.path.abspath(args.sable)

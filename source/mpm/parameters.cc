@@ -141,8 +141,9 @@ namespace sable::mpm
                       "point's weights and their gradients jump as it crosses "
                       "a cell face). gimp: uniform GIMP (Bardenhagen & Kober "
                       "2004), each point spread over a square (cube) of its "
-                      "seeding spacing, which makes the weights and gradients "
-                      "continuous; a point then reaches up to 3 nodes per "
+                      "seeding spacing (shrunk next to the grid's faces, where "
+                      "the weights become the linear ones), which makes the "
+                      "weights and gradients continuous; a point then reaches up to 3 nodes per "
                       "direction. gimp needs a uniform grid (no Mesh "
                       "refinement) and one MPI rank (threads are allowed).");
     prm.leave_subsection();

@@ -2,11 +2,13 @@
 // (Grid/Shape functions = gimp), in 2D and 3D, on a box grid and on one
 // periodic along y:
 //  - one direction against an independent quadrature: the weight of each
-//    node is the mean of its hat function over the point's domain (clipped
-//    at the grid's faces), computed with 20,000 midpoints per domain
-//    (error ~1e-9, tolerance 1e-7); a point whose domain lies inside one
+//    node is the mean of its hat function over the point's domain computed with 20,000 midpoints per domain
+//    (error ~1e-9, tolerance 1e-7), its half-length shrunk to the distance
+//    to the grid's face where that is smaller; a point whose domain lies inside one
 //    cell gets the linear weights at its centre (1e-12: a difference of two
-//    integrals of order 1, divided by the domain's width 2l >= 0.01);
+//    integrals of order 1, divided by the domain's width 2l >= 0.01), and
+//    so does a point 1e-10 cells from a face of the grid (1e-9), whose
+//    domain has shrunk to that distance: walls there hold the points;
 //  - partition of unity sum_k N_k = 1 and sum_k grad N_k = 0 at 300 random
 //    points with random seeding spacings in (0, h], next to the faces too
 //    (1e-13: sums of a few dozen products of numbers in [0, 1]);
@@ -62,7 +64,8 @@ namespace
         const double lower = i % 3 == 0 ? 0. : -10.;
         const double upper = i % 3 == 1 ? 1. : 10.;
         const auto   w     = gimp_weights_1d(xi, l, lower, upper);
-        const double a = std::max(xi - l, lower), b = std::min(xi + l, upper);
+        const double half = std::min({l, xi - lower, upper - xi});
+        const double a = xi - half, b = xi + half;
         const int    first = xi < 0.5 ? -1 : 0;
         const unsigned int n = 20000;
         for (int k = 0; k < 3; ++k)
@@ -81,7 +84,20 @@ namespace
                                     std::abs(w.value[k] -
                                              std::max(0., 1. - std::abs(xi - (first + k)))));
       }
-    check_relative("1D: GIMP weights = mean of the hat over the clipped domain", error, 0., 1e-7, 1.);
+    check_relative("1D: GIMP weights = mean of the hat over the domain", error, 0., 1e-7, 1.);
+    // a point 1e-10 cells from a face of the grid: the domain has shrunk
+    // to 1e-10, so the weights are the linear ones to ~1e-10
+    double error_at_face = 0;
+    for (const double xi : {1e-10, 1. - 1e-10})
+      {
+        const auto w     = gimp_weights_1d(xi, 0.4, xi < 0.5 ? 0. : -5., xi < 0.5 ? 5. : 1.);
+        const int  first = xi < 0.5 ? -1 : 0;
+        for (int k = 0; k < 3; ++k)
+          error_at_face = std::max(
+            error_at_face, std::abs(w.value[k] - std::max(0., 1. - std::abs(xi - (first + k)))));
+      }
+    check_relative("1D: at a face of the grid the weights are the linear ones",
+                   error_at_face, 0., 1e-9, 1.);
     check_relative("1D: a domain inside one cell gives the linear weights at its centre",
                    error_inside, 0., 1e-12, 1.);
   }

@@ -21,13 +21,17 @@ namespace sable::mpm
    * One direction of the uniform generalized interpolation material point
    * (uGIMP) weights of Bardenhagen & Kober (2004): a point of half-length
    * l (its seeding spacing over two, in cell units) averages each node's
-   * linear hat function over its domain [xi - l, xi + l],
+   * linear hat function over its domain [a, b] = [xi - l, xi + l],
    *
    *   S_j(xi) = 1/(b - a) int_a^b hat_j(x) dx,
    *
-   * with the domain clipped to the grid, [a, b] = [max(xi - l, lower),
-   * min(xi + l, upper)], so that the weights keep the partition of unity
-   * (and their derivatives sum to zero) next to the grid's faces. The
+   * with the domain shrunk where it would leave the grid: its half-length
+   * is min(l, xi - lower, upper - xi), so that the weights keep the
+   * partition of unity (and their derivatives sum to zero) and become the
+   * linear ones at a face of the grid. There the face's nodes, on which
+   * walls act, carry the points' whole velocity normal to the face, as with
+   * the linear functions (a domain merely clipped at the face would keep a
+   * share of the interior nodes' velocity and let points pass a wall). The
    * weights and their first derivatives are continuous as the point
    * crosses a cell face, where those of the linear (l = 0) functions jump:
    * that jump is the cell-crossing noise of plain MPM.
@@ -86,12 +90,20 @@ namespace sable::mpm
   {
     GimpWeights1D w;
     const int     first = first_gimp_node(xi);
-    const double  a     = std::max(xi - l, lower);
-    const double  b     = std::min(xi + l, upper);
-    const double  width = b - a;
-    if (!(width > 1e-12))
+    // the half-length, and how the domain's ends move with the point:
+    // together, or one end fixed where the domain meets a face
+    double half = l, da = 1., db = 1.;
+    if (xi - lower < half)
+      half = xi - lower, da = 0., db = 2.;
+    if (upper - xi < half)
+      half = upper - xi, da = 2., db = 0.;
+    const double a = xi - half, b = xi + half, width = 2. * half;
+    // no node strictly inside the domain: every hat is linear over it, and
+    // its mean is its value at the centre (also the limit of a vanishing
+    // domain, without the round-off of a difference divided by the width)
+    const double kink = std::ceil(a + 1e-12);
+    if (!(kink < b - 1e-12))
       {
-        // a point without extent: the linear functions
         for (int k = 0; k < 3; ++k)
           {
             const double x = xi - (first + k);
@@ -100,9 +112,6 @@ namespace sable::mpm
           }
         return w;
       }
-    // how the ends move with the point: not at all where clipped
-    const double da = xi - l > lower ? 1. : 0.;
-    const double db = xi + l < upper ? 1. : 0.;
     for (int k = 0; k < 3; ++k)
       {
         const double node = first + k;
