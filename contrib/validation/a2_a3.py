@@ -19,7 +19,7 @@ directory; doc/validation for the report).
 
 Usage: contrib/validation/a2_a3.py [--sable build/sable] [--work DIR]
            [--end-time T] [--resolutions 2,4,8] [--cases a2_noslip,...]
-           [--output-dir DIR]
+           [--output-dir DIR] [--set "Section/Entry=value" ...]
 The scene files run as they are, with `--set` for `Grid/Subdivisions`, the
 output directory, the end time and (for the spin) the particle output
 interval. Particle files are read with meshio (Debian's /usr/bin/python3
@@ -70,6 +70,10 @@ CASES = [
 ]
 
 
+# --set: entries given to every run (e.g. "Grid/Shape functions=gimp")
+EXTRA_SETTINGS = []
+
+
 def settings(cells, output_directory, end_time, output_interval):
     """The --set options for another resolution, output directory, end
     time and particle output interval of a scene file."""
@@ -83,6 +87,8 @@ def settings(cells, output_directory, end_time, output_interval):
     arguments = []
     for entry, value in values.items():
         arguments += ["--set", f"{entry}={value}"]
+    for entry in EXTRA_SETTINGS:
+        arguments += ["--set", entry]
     return arguments
 
 
@@ -182,8 +188,11 @@ def main():
     parser.add_argument("--output-dir", default=None,
                         help="where the table and figure go (default: the work "
                              "directory; doc/validation updates the report)")
+    parser.add_argument("--set", action="append", default=[], metavar="ENTRY=VALUE",
+                        help='an entry for every run, e.g. "Grid/Shape functions=gimp"')
     args = parser.parse_args()
     args.output_dir = args.output_dir or args.work
+    EXTRA_SETTINGS.extend(args.set)
     require_matplotlib()
     sable = os.path.abspath(args.sable)
     work = os.path.abspath(args.work)

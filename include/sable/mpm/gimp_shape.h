@@ -1,6 +1,8 @@
 #ifndef sable_mpm_gimp_shape_h
 #define sable_mpm_gimp_shape_h
 
+#include <deal.II/base/config.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -85,7 +87,7 @@ namespace sable::mpm
    * relative to the cell's lower vertex; pass -infinity and +infinity on a
    * periodic axis). Nodes beyond lower or upper get weight 0.
    */
-  inline GimpWeights1D
+  DEAL_II_ALWAYS_INLINE inline GimpWeights1D
   gimp_weights_1d(const double xi, const double l, const double lower, const double upper)
   {
     GimpWeights1D w;

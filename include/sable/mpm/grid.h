@@ -119,6 +119,10 @@ namespace sable::mpm
 
       Q1Shape<dim>                                   vertex;
       std::array<unsigned int, max_nodes_per_cell>   stencil_nodes;
+      /// GIMP: the last point volume seen and its seeding spacing (the
+      /// points of a cell mostly share one; a root per point costs)
+      double last_volume  = -1.;
+      double last_spacing = 0.;
       std::array<Tensor<1, dim>, max_nodes_per_cell> stencil_shifts;
       std::array<double, max_nodes_per_cell>         folded_values;
       std::array<Tensor<1, dim>, max_nodes_per_cell> folded_gradients;
@@ -308,7 +312,12 @@ namespace sable::mpm
                            const double      point_volume,
                            Shape &           shape) const
   {
-    const double spacing = dim == 2 ? std::sqrt(point_volume) : std::cbrt(point_volume);
+    if (point_volume != shape.last_volume)
+      {
+        shape.last_volume  = point_volume;
+        shape.last_spacing = dim == 2 ? std::sqrt(point_volume) : std::cbrt(point_volume);
+      }
+    const double spacing = shape.last_spacing;
     // per direction: the lattice index, the image shift, the weight and its
     // derivative of the (at most three) nodes that reach the point
     int          index[dim][3];
