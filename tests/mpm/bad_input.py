@@ -42,6 +42,10 @@ cases = [
     ("refinement_criterion", {"Mesh refinement/Criteria": "curvature"}, {}, ["Criteria", "curvature"]),
     ("refinement_region", {"Mesh refinement/Criteria": "region", "Mesh refinement/Region lower corner": "0.5, 0.5",
                            "Mesh refinement/Region upper corner": "0.6, 0.4"}, {}, ["Region upper corner", "larger"]),
+    ("gimp_refinement", {"Grid/Shape functions": "gimp", "Mesh refinement/Criteria": "body surface",
+                         "Mesh refinement/Maximum level": 1}, {},
+     ["Grid/Shape functions", "gimp", "Mesh refinement"]),
+    ("shape_functions", {"Grid/Shape functions": "quadratic"}, {}, ["Shape functions", "quadratic"]),
 ]
 
 for name, entries, body_changes, words in cases:
