@@ -17,6 +17,7 @@ Each case runs with the normal choices given by --normals.
 Usage: contrib/validation/body_friction.py [--sable build/sable]
            [--work DIR] [--dim 2|3] [--angles 20,30,40] [--frictions 0.2,0.4,0.6]
            [--normals "mass weighted,largest mass"] [--end-time T]
+           [--set "Section/Entry=value" ...]
 Prints a markdown table (and writes it to DIR/body_friction_<dim>d.md)."""
 import argparse
 import math
@@ -31,6 +32,10 @@ G = 9.81
 H = 0.025  # cell size, m
 MATERIAL = {"Young's modulus": 1e7, "Poisson's ratio": 0.3, "Density": 1000,
             "Particles per cell direction": 2}
+
+
+# --set: entries given to every run (e.g. "Grid/Shape functions=gimp")
+EXTRA_ENTRIES = {}
 
 
 def scene(dim, theta, mu, normals, end_time, settle):
@@ -48,6 +53,7 @@ def scene(dim, theta, mu, normals, end_time, settle):
         "Boundary conditions/Types": "2: fixed", "Contact/Model": "bardenhagen 2001",
         "Contact/Normals": normals, "Contact/Friction coefficient": mu,
         "Output/Statistics interval": 10, "Solver/Settling steps": 40000 if settle else 0,
+        **EXTRA_ENTRIES,
     }
     plane_upper = (size[0], plane_top) + tuple(size[2:])
     bodies = [dict(MATERIAL, Shape="box", **{"Lower corner": ", ".join(["0"] * dim),
@@ -86,7 +92,10 @@ def main():
     parser.add_argument("--frictions", default="0.2,0.4,0.6")
     parser.add_argument("--normals", default="mass weighted,largest mass")
     parser.add_argument("--end-time", type=float, default=0.5)
+    parser.add_argument("--set", action="append", default=[], metavar="ENTRY=VALUE",
+                        help='an entry for every run, e.g. "Grid/Shape functions=gimp"')
     args = parser.parse_args()
+    EXTRA_ENTRIES.update(entry.split("=", 1) for entry in args.set)
     os.environ["SABLE"] = os.path.abspath(args.sable)
     os.environ["SABLE_WORK"] = os.path.abspath(args.work)
     sys.path.insert(0, os.path.join(ROOT, "tests", "mpm"))

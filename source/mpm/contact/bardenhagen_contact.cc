@@ -368,8 +368,14 @@ namespace sable::mpm
                 const unsigned int index = pair_index(r.body, begin[b].body);
                 if (index == BodyFields<dim>::invalid)
                   continue;
-                // split among the other bodies by their mass
-                const double share = begin[b].mass / (total_mass - r.mass);
+                // split among the other bodies by their mass, summed
+                // rather than taken as total - own: a body's tiny share
+                // at a node (a GIMP weight of 1e-20) would leave 0 / 0
+                double others = 0;
+                for (unsigned int c = 0; c < n; ++c)
+                  if (c != a)
+                    others += begin[c].mass;
+                const double share = others > 0 ? begin[b].mass / others : 0.;
                 sums.pair_forces[index] += share * r.mass * scale * change[a] / dt;
               }
       }
