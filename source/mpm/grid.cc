@@ -211,6 +211,56 @@ namespace sable::mpm
   }
 
   template <int dim>
+  void
+  Grid<dim>::widen_reach(const CellData &      data,
+                         const Point<dim> &    xi,
+                         const double          spacing,
+                         std::array<int, dim> &lower,
+                         std::array<int, dim> &upper) const
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        // a node k has weight only if its hat's support (k - 1, k + 1)
+        // meets the domain [xi - l, xi + l] (which only shrinks at faces)
+        const double half = std::min(0.5 * spacing * data.inverse_h[d], 0.5);
+        lower[d] = std::min(lower[d], std::max(-1, static_cast<int>(std::floor(xi[d] - half - 1e-9))));
+        upper[d] = std::max(upper[d], std::min(2, static_cast<int>(std::ceil(xi[d] + half + 1e-9))));
+      }
+  }
+
+  template <int dim>
+  void
+  Grid<dim>::nodes_in_reach(const CellData &            data,
+                            const std::array<int, dim> &lower,
+                            const std::array<int, dim> &upper,
+                            std::vector<unsigned int> & nodes) const
+  {
+    std::array<int, dim> offset = lower;
+    while (true)
+      {
+        int  flat   = 0;
+        bool inside = true;
+        for (int d = dim - 1; d >= 0; --d)
+          {
+            int i = data.lattice[d] + offset[d];
+            if (periodic.periodic[d])
+              i = (i + lattice_cells[d]) % lattice_cells[d];
+            else
+              inside = inside && i >= 0 && i <= lattice_cells[d];
+            flat = flat * (lattice_cells[d] + 1) + i;
+          }
+        if (inside)
+          nodes.push_back(lattice_nodes[flat]);
+        unsigned int d = 0;
+        while (d < dim && offset[d] == upper[d])
+          offset[d] = lower[d], ++d;
+        if (d == dim)
+          return;
+        ++offset[d];
+      }
+  }
+
+  template <int dim>
   typename Grid<dim>::HangingCell
   Grid<dim>::fold_hanging_vertices(
     const typename DoFHandler<dim>::active_cell_iterator &cell,

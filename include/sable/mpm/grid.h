@@ -159,6 +159,25 @@ namespace sable::mpm
       return {h.nodes.data(), h.n_nodes};
     }
 
+    /// GIMP: widen the box [@p lower, @p upper] of node offsets from the
+    /// cell's vertex 0 (per direction, within -1 to 2) to hold every node
+    /// that a point at @p xi with seeding spacing @p spacing reaches with a
+    /// nonzero weight (with a margin: the box may hold a few more).
+    void
+    widen_reach(const CellData &      data,
+                const Point<dim> &    xi,
+                const double          spacing,
+                std::array<int, dim> &lower,
+                std::array<int, dim> &upper) const;
+
+    /// GIMP: append to @p nodes the nodes of the box of offsets [@p lower,
+    /// @p upper] from the cell's vertex 0 (see widen_reach()).
+    void
+    nodes_in_reach(const CellData &            data,
+                   const std::array<int, dim> &lower,
+                   const std::array<int, dim> &upper,
+                   std::vector<unsigned int> & nodes) const;
+
     /// Evaluate the cell's shape functions at reference point @p xi for a
     /// point of initial volume @p point_volume (which sets its GIMP domain).
     inline void

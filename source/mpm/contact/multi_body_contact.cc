@@ -29,12 +29,63 @@ namespace sable::mpm
     // (node, body) pairs are collected per range of cells and sorted by
     // allocate(), so the table does not depend on the threads
     std::mutex mutex;
+    const bool gimp = grid.get_shape_functions() == ShapeFunctions::gimp;
     cells.for_each_coloured_range([&](const unsigned int *begin, const unsigned int *end) {
       std::vector<unsigned int>                          bodies;
       std::vector<std::pair<unsigned int, unsigned int>> extra;
+      // GIMP: per body of the cell, the box of nodes its points reach (the
+      // 4^dim nodes a cell's points may reach would make most nodes near a
+      // grain contact nodes)
+      struct Reach
+      {
+        unsigned int         body;
+        std::array<int, dim> lower, upper;
+      };
+      std::vector<Reach>        reaches;
+      std::vector<unsigned int> reached;
+      double                    last_volume = -1, spacing = 0;
       for (const unsigned int *c = begin; c != end; ++c)
         {
           const auto &cell = cells[*c];
+          if (gimp)
+            {
+              reaches.clear();
+              for (const auto &particle : cell.particles)
+                {
+                  const auto         props = particle.get_properties();
+                  const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+                  auto reach = std::find_if(reaches.begin(), reaches.end(), [&](const Reach &r) {
+                    return r.body == body;
+                  });
+                  if (reach == reaches.end())
+                    {
+                      Reach r;
+                      r.body = body;
+                      r.lower.fill(2);
+                      r.upper.fill(-1);
+                      reaches.push_back(r);
+                      reach = reaches.end() - 1;
+                    }
+                  if (props[layout.initial_volume] != last_volume)
+                    {
+                      last_volume = props[layout.initial_volume];
+                      spacing     = dim == 2 ? std::sqrt(last_volume) : std::cbrt(last_volume);
+                    }
+                  grid.widen_reach(*cell.data,
+                                   particle.get_reference_location(),
+                                   spacing,
+                                   reach->lower,
+                                   reach->upper);
+                }
+              for (const Reach &r : reaches)
+                {
+                  reached.clear();
+                  grid.nodes_in_reach(*cell.data, r.lower, r.upper, reached);
+                  for (const unsigned int node : reached)
+                    fields.add(node, r.body, extra);
+                }
+              continue;
+            }
           bodies.clear();
           for (const auto &particle : cell.particles)
             {
