@@ -74,6 +74,7 @@ namespace sable::mpm
 
     cells.assign(triangulation.n_active_cells(), CellData());
     hanging_cells.clear();
+    gimp_cells.clear();
     candidate_nodes.clear();
     double h_min = std::numeric_limits<double>::max();
     Tensor<1, dim> huge;
@@ -159,13 +160,14 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       n_lattice *= lattice_cells[d] + 1;
     lattice_nodes.assign(n_lattice, numbers::invalid_unsigned_int);
+    gimp_cells.assign(cells.size(), GimpCell());
     // each lattice point's node; on a periodic axis the upper face's
     // vertices are images of the lower face's and are never looked up
     for (const auto &cell : triangulation.active_cell_iterators())
       if (!cell->is_artificial())
         {
-          CellData &data = cells[cell->active_cell_index()];
-          data.lattice   = lattice_index(cell->vertex(0));
+          const CellData &data = cells[cell->active_cell_index()];
+          gimp_cells[cell->active_cell_index()].lattice = lattice_index(cell->vertex(0));
           for (unsigned int v = 0; v < nodes_per_cell; ++v)
             {
               const std::array<int, dim> index = lattice_index(cell->vertex(v));
@@ -178,35 +180,26 @@ namespace sable::mpm
             }
         }
 
-    // the nodes a cell's points may reach: 4 per direction around it
+    // the nodes a cell's points may reach: 4 per direction around it (once
+    // each: on a periodic axis of 3 cells two of them are one node)
+    std::array<int, dim> lower, upper;
+    lower.fill(-1);
+    upper.fill(2);
+    std::vector<unsigned int> reach;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (!cell->is_artificial())
         {
-          CellData &data      = cells[cell->active_cell_index()];
-          data.first_candidate = candidate_nodes.size();
-          const unsigned int n_offsets = dim == 2 ? 16 : 64;
-          for (unsigned int o = 0; o < n_offsets; ++o)
-            {
-              std::array<int, dim> index;
-              bool                 inside = true;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  index[d] = data.lattice[d] - 1 + static_cast<int>((o >> (2 * d)) & 3u);
-                  if (periodic.periodic[d])
-                    index[d] = (index[d] + lattice_cells[d]) % lattice_cells[d];
-                  else
-                    inside = inside && index[d] >= 0 && index[d] <= lattice_cells[d];
-                }
-              if (!inside)
-                continue;
-              const unsigned int node = lattice_nodes[flat(index)];
-              AssertThrow(node != numbers::invalid_unsigned_int, ExcInternalError());
-              if (std::find(candidate_nodes.begin() + data.first_candidate,
-                            candidate_nodes.end(),
-                            node) == candidate_nodes.end())
-                candidate_nodes.push_back(node);
-            }
-          data.n_candidates = candidate_nodes.size() - data.first_candidate;
+          const CellData &data = cells[cell->active_cell_index()];
+          reach.clear();
+          nodes_in_reach(data, lower, upper, reach);
+          std::sort(reach.begin(), reach.end());
+          reach.erase(std::unique(reach.begin(), reach.end()), reach.end());
+          AssertThrow(reach.empty() || reach.back() != numbers::invalid_unsigned_int,
+                      ExcInternalError());
+          GimpCell &g       = gimp_cells[cell->active_cell_index()];
+          g.first_candidate = candidate_nodes.size();
+          g.n_candidates    = reach.size();
+          candidate_nodes.insert(candidate_nodes.end(), reach.begin(), reach.end());
         }
   }
 
@@ -235,14 +228,15 @@ namespace sable::mpm
                             const std::array<int, dim> &upper,
                             std::vector<unsigned int> & nodes) const
   {
-    std::array<int, dim> offset = lower;
+    const std::array<int, dim> &origin = gimp_cell(data).lattice;
+    std::array<int, dim>        offset = lower;
     while (true)
       {
         int  flat   = 0;
         bool inside = true;
         for (int d = dim - 1; d >= 0; --d)
           {
-            int i = data.lattice[d] + offset[d];
+            int i = origin[d] + offset[d];
             if (periodic.periodic[d])
               i = (i + lattice_cells[d]) % lattice_cells[d];
             else

@@ -8,6 +8,7 @@
 #include <deal.II/fe/mapping_cartesian.h>
 
 #include <sable/mpm/gimp_shape.h>
+#include <sable/mpm/particle_layout.h>
 #include <sable/mpm/periodicity.h>
 #include <sable/mpm/q1_shape.h>
 
@@ -74,11 +75,6 @@ namespace sable::mpm
       /// index into the table of cells with hanging vertices, or
       /// numbers::invalid_unsigned_int
       unsigned int hanging = numbers::invalid_unsigned_int;
-      /// GIMP: the lattice index of vertex 0, and where the nodes the
-      /// cell's points may reach (4 per direction) start in the table
-      std::array<int, dim> lattice{};
-      unsigned int         first_candidate = 0;
-      unsigned int         n_candidates    = 0;
     };
 
     /// The folding of a cell with hanging vertices, sparse: vertex v
@@ -151,8 +147,11 @@ namespace sable::mpm
     std::pair<const unsigned int *, unsigned int>
     cell_nodes(const CellData &data) const
     {
-      if (data.n_candidates > 0)
-        return {candidate_nodes.data() + data.first_candidate, data.n_candidates};
+      if (!gimp_cells.empty())
+        {
+          const GimpCell &g = gimp_cell(data);
+          return {candidate_nodes.data() + g.first_candidate, g.n_candidates};
+        }
       if (data.hanging == numbers::invalid_unsigned_int)
         return {data.nodes.data(), nodes_per_cell};
       const HangingCell &h = hanging_cells[data.hanging];
@@ -300,6 +299,25 @@ namespace sable::mpm
     void
     setup_lattice();
 
+    /// GIMP, per cell: the lattice index of its vertex 0, and where the
+    /// nodes its points may reach (4 per direction) start in
+    /// candidate_nodes. Kept apart from CellData, which the linear
+    /// functions' transfers read, so that they do not carry it.
+    struct GimpCell
+    {
+      std::array<int, dim> lattice{};
+      unsigned int         first_candidate = 0;
+      unsigned int         n_candidates    = 0;
+    };
+
+    /// The GIMP data of the cell whose CellData is @p data (an element of
+    /// cells, so its position there is its active cell index).
+    const GimpCell &
+    gimp_cell(const CellData &data) const
+    {
+      return gimp_cells[&data - cells.data()];
+    }
+
     HangingCell
     fold_hanging_vertices(const typename DoFHandler<dim>::active_cell_iterator &cell,
                           const std::vector<types::global_dof_index> &         dofs,
@@ -321,6 +339,7 @@ namespace sable::mpm
     /// (x fastest; numbers::invalid_unsigned_int where constrained)
     std::array<int, dim>      lattice_cells{};
     std::vector<unsigned int> lattice_nodes;
+    std::vector<GimpCell>     gimp_cells;
     std::vector<unsigned int> candidate_nodes;
   };
 
@@ -334,9 +353,10 @@ namespace sable::mpm
     if (point_volume != shape.last_volume)
       {
         shape.last_volume  = point_volume;
-        shape.last_spacing = dim == 2 ? std::sqrt(point_volume) : std::cbrt(point_volume);
+        shape.last_spacing = ParticleLayout<dim>::spacing_of_volume(point_volume);
       }
-    const double spacing = shape.last_spacing;
+    const double   spacing = shape.last_spacing;
+    const GimpCell &cell   = gimp_cell(data);
     // per direction: the lattice index, the image shift, the weight and its
     // derivative of the (at most three) nodes that reach the point
     int          index[dim][3];
@@ -350,9 +370,9 @@ namespace sable::mpm
         const GimpWeights1D w = gimp_weights_1d(
           xi[d],
           half,
-          periodic.periodic[d] ? -infinity : -double(data.lattice[d]),
-          periodic.periodic[d] ? infinity : double(lattice_cells[d] - data.lattice[d]));
-        const int first = data.lattice[d] + first_gimp_node(xi[d]);
+          periodic.periodic[d] ? -infinity : -double(cell.lattice[d]),
+          periodic.periodic[d] ? infinity : double(lattice_cells[d] - cell.lattice[d]));
+        const int first = cell.lattice[d] + first_gimp_node(xi[d]);
         n[d]            = 0;
         for (int k = 0; k < 3; ++k)
           if (w.value[k] != 0. || w.derivative[k] != 0.)

@@ -97,7 +97,14 @@ namespace sable::mpm
     static double
     seeding_spacing(const Properties &props)
     {
-      return dim == 2 ? std::sqrt(props[initial_volume]) : std::cbrt(props[initial_volume]);
+      return spacing_of_volume(props[initial_volume]);
+    }
+
+    /// The seeding spacing of a point of initial volume @p volume.
+    static double
+    spacing_of_volume(const double volume)
+    {
+      return dim == 2 ? std::sqrt(volume) : std::cbrt(volume);
     }
   };
 } // namespace sable::mpm

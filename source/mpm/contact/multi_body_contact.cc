@@ -69,7 +69,7 @@ namespace sable::mpm
                   if (props[layout.initial_volume] != last_volume)
                     {
                       last_volume = props[layout.initial_volume];
-                      spacing     = dim == 2 ? std::sqrt(last_volume) : std::cbrt(last_volume);
+                      spacing     = ParticleLayout<dim>::spacing_of_volume(last_volume);
                     }
                   grid.widen_reach(*cell.data,
                                    particle.get_reference_location(),
