@@ -150,6 +150,7 @@ namespace sable::mpm
     AssertThrow(!directory_name.empty() || !parameters.output_directory.empty(),
                 ExcMessage("save_checkpoint() needs a directory when the output directory is "
                            "empty."));
+    put_particles_in_order();
     TimerOutput::Scope scope(timer, "checkpoint");
     const fs::path directory =
       directory_name.empty() ? fs::path(parameters.output_directory) / checkpoint_name :

@@ -77,13 +77,7 @@ namespace sable::mpm
           {
             const Cell &cell = cells[c];
             for (auto &particle : cell.particles)
-              {
-                Point<dim> reference = particle.get_location();
-                reference -= cell.lower;
-                for (unsigned int d = 0; d < dim; ++d)
-                  reference[d] /= cell.upper[d] - cell.lower[d];
-                particle.set_reference_location(reference);
-              }
+              particle.set_reference_location(cell.reference_location(particle.get_location()));
           }
       },
       16);

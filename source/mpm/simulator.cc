@@ -738,6 +738,7 @@ namespace sable::mpm
   void
   Simulator<dim>::write_particles()
   {
+    put_particles_in_order();
     TimerOutput::Scope     scope(timer, "output");
     {
       // deal.II and MPI-IO abort on a failed write: check first (the
@@ -856,8 +857,10 @@ namespace sable::mpm
     if (parameters.print_timings)
       {
         timer.print_summary();
-        pcout << "Particle sort in " << n_sorts << " of " << n_sorts + n_sorts_skipped
-              << " steps (the others: no point left its cell)" << std::endl;
+        pcout << "Particle sort in " << n_sorts << " of "
+              << n_sorts + n_rebins + n_sorts_skipped << " steps; only the points "
+              << "that left their cells moved in " << n_rebins
+              << "; no point left its cell in " << n_sorts_skipped << std::endl;
       }
     if (!parameters.output_directory.empty())
       pcout << "Output written to " << parameters.output_directory << "/ (statistics.csv"
@@ -938,9 +941,20 @@ namespace sable::mpm
   {
     TimerOutput::Scope scope(timer, "sort particles");
     lost_particles = 0;
+    bool rebinned = false;
     if (points_left_cells)
       {
-        particle_handler->sort_particles_into_subdomains_and_cells();
+        // on one rank the points that left are moved on their own, unless
+        // one left the grid or the moves since the last sort call for one
+        rebinned = !parallel &&
+                   rebinning.moved_since_full_sort() <
+                     full_sort_fraction * particle_handler->n_locally_owned_particles() &&
+                   rebinning.rebin(*particle_handler, particle_cells, grid.periodicity());
+        if (!rebinned)
+          {
+            particle_handler->sort_particles_into_subdomains_and_cells();
+            rebinning.reset();
+          }
         if (contact && parallel)
           particle_handler->exchange_ghost_particles(true);
       }
@@ -952,7 +966,7 @@ namespace sable::mpm
         if (contact && parallel)
           particle_handler->update_ghost_particles();
       }
-    ++(points_left_cells ? n_sorts : n_sorts_skipped);
+    ++(!points_left_cells ? n_sorts_skipped : rebinned ? n_rebins : n_sorts);
     // a skipped sort leaves the owned points' container as it was (the
     // ghost update may not: rebuild then)
     particle_cells_current = !points_left_cells && !(contact && parallel);
@@ -966,6 +980,22 @@ namespace sable::mpm
         pcout << "step " << state.step_number << ": " << lost
               << " material point(s) left the grid" << std::endl;
       }
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::put_particles_in_order()
+  {
+    // the rebinning appends the cells that gained their first points to the
+    // container; output and checkpoints write the points in its order, so
+    // they get the order of a sort, which is also the order a resumed run
+    // starts from (all points are in their cells: the sort only reorders)
+    if (rebinning.moved_since_full_sort() == 0)
+      return;
+    TimerOutput::Scope scope(timer, "sort particles");
+    particle_handler->sort_particles_into_subdomains_and_cells();
+    rebinning.reset();
+    particle_cells_current = false;
   }
 
   template <int dim>

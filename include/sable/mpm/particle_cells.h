@@ -53,6 +53,18 @@ namespace sable::mpm
             return false;
         return true;
       }
+
+      /// The reference coordinates of @p x in the cell, (x - lower) / (upper -
+      /// lower) per direction, the operations of deal.II's MappingCartesian.
+      Point<dim>
+      reference_location(const Point<dim> &x) const
+      {
+        Point<dim> reference = x;
+        reference -= lower;
+        for (unsigned int d = 0; d < dim; ++d)
+          reference[d] /= upper[d] - lower[d];
+        return reference;
+      }
     };
 
     /// Collect the cells with points of @p particle_handler (owned, and

@@ -16,6 +16,7 @@
 #include <sable/mpm/mesh_refinement.h>
 #include <sable/mpm/nodal_fields.h>
 #include <sable/mpm/particle_cells.h>
+#include <sable/mpm/particle_rebinning.h>
 #include <sable/mpm/parameters.h>
 #include <sable/mpm/particle_layout.h>
 #include <sable/mpm/particle_to_grid.h>
@@ -234,6 +235,10 @@ namespace sable::mpm
     update_stresses();
     void
     sort_particles();
+    /// The particle container in the order a sort leaves it (cells by
+    /// index), for output and checkpoints: see the definition.
+    void
+    put_particles_in_order();
     void
     advance_time();
     /// Every 'Refinement interval' steps, or (interval 0) when a point may
@@ -339,8 +344,14 @@ namespace sable::mpm
     /// whether a point left its cell in this step's move (sort_particles()
     /// sorts only then)
     bool points_left_cells = true;
-    /// steps that sorted the particles, and that did not need to
-    unsigned int n_sorts = 0, n_sorts_skipped = 0;
+    /// on one rank: moves the points that left their cells in place of a
+    /// sort; a full sort still runs once the moved points add up to
+    /// full_sort_fraction of the points (it orders their data in memory)
+    ParticleRebinning<dim> rebinning;
+    static constexpr double full_sort_fraction = 0.1;
+    /// steps that sorted the particles, that moved only the points that
+    /// left their cells, and that did not need to do either
+    unsigned int n_sorts = 0, n_rebins = 0, n_sorts_skipped = 0;
     /// multi-body contact: only with a contact model and two or more bodies
     std::unique_ptr<MultiBodyContact<dim>> contact;
     /// the bodies of prescribed velocity, with this step's velocities
