@@ -736,6 +736,21 @@ namespace sable::mpm
 
   template <int dim>
   void
+  Simulator<dim>::check_statistics_finite(const Statistics<dim> &s) const
+  {
+    const std::string column = statistics_file->first_not_finite(
+      state.step_number, state.time, state.time_step, state.boundary_work, s);
+    if (column.empty())
+      return;
+    std::ostringstream message;
+    message << "the run stopped at step " << state.step_number << ", time "
+            << std::setprecision(10) << state.time << ": the statistics value '" << column
+            << "' is not a finite number (NaN or infinity); fastest material point at " << to_string(fastest_point_location());
+    throw std::runtime_error(message.str());
+  }
+
+  template <int dim>
+  void
   Simulator<dim>::write_particles()
   {
     put_particles_in_order();
@@ -829,6 +844,7 @@ namespace sable::mpm
             if (state.statistics_row_due || last)
               statistics_file->write_row(
                 state.step_number, state.time, state.time_step, state.boundary_work, s);
+            check_statistics_finite(s);
             if (progress)
               {
                 const double elapsed = wall.wall_time();
@@ -953,7 +969,7 @@ namespace sable::mpm
         if (!rebinned)
           {
             particle_handler->sort_particles_into_subdomains_and_cells();
-            rebinning.reset();
+            reset_rebinning();
           }
         if (contact && parallel)
           particle_handler->exchange_ghost_particles(true);
@@ -994,8 +1010,21 @@ namespace sable::mpm
       return;
     TimerOutput::Scope scope(timer, "sort particles");
     particle_handler->sort_particles_into_subdomains_and_cells();
-    rebinning.reset();
+    reset_rebinning();
     particle_cells_current = false;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::reset_rebinning()
+  {
+    rebinning.reset();
+    // the sort leaves the particle data without room to spare; the points
+    // the rebinning moves are inserted before their old copies go, so make
+    // room for them now rather than let the first move double the data
+    if (!parallel)
+      particle_handler->reserve(static_cast<std::size_t>(
+        (1. + full_sort_fraction) * particle_handler->n_locally_owned_particles()));
   }
 
   template <int dim>
@@ -1015,6 +1044,7 @@ namespace sable::mpm
     const Statistics<dim> s = compute_statistics();
     statistics_file->write_row(
       state.step_number, state.time, state.time_step, state.boundary_work, s);
+    check_statistics_finite(s);
     return s;
   }
 

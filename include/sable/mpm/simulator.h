@@ -239,6 +239,9 @@ namespace sable::mpm
     /// index), for output and checkpoints: see the definition.
     void
     put_particles_in_order();
+    /// After a full sort: the rebinning starts counting again.
+    void
+    reset_rebinning();
     void
     advance_time();
     /// Every 'Refinement interval' steps, or (interval 0) when a point may
@@ -292,6 +295,10 @@ namespace sable::mpm
     /// balance drifts by more than 1%.
     void
     check_energy(const Statistics<dim> &statistics);
+    /// Stop the run, naming the step, time and column, if a value of the
+    /// statistics row is not a finite number.
+    void
+    check_statistics_finite(const Statistics<dim> &statistics) const;
     /// Statistics::energy_drift of @p statistics.
     double
     energy_drift(const Statistics<dim> &statistics) const;

@@ -25,8 +25,10 @@ namespace sable::mpm
     , communicator(communicator)
   {
     // the columns: name and value, in the order of the file
-    const auto add = [this](const std::string &name, std::function<double(const Row &)> value) {
-      columns.push_back({name, std::move(value)});
+    const auto add = [this](const std::string &                name,
+                            std::function<double(const Row &)> value,
+                            const unsigned int body = numbers::invalid_unsigned_int) {
+      columns.push_back({name, std::move(value), body});
     };
     const std::string axes = "xyz";
     add("step", [](const Row &r) { return r.step; });
@@ -52,14 +54,17 @@ namespace sable::mpm
         const std::string body = "body" + std::to_string(b);
         for (unsigned int d = 0; d < dim; ++d)
           add(body + "_" + axes.substr(d, 1),
-              [b, d](const Row &r) { return r.statistics.body_position[b][d]; });
+              [b, d](const Row &r) { return r.statistics.body_position[b][d]; },
+              b);
         for (unsigned int d = 0; d < dim; ++d)
           add(body + "_v" + axes.substr(d, 1),
-              [b, d](const Row &r) { return r.statistics.body_velocity[b][d]; });
+              [b, d](const Row &r) { return r.statistics.body_velocity[b][d]; },
+              b);
         // 2D: the rotation about z only
         for (unsigned int d = (dim == 2 ? 2 : 0); d < 3; ++d)
           add(body + (dim == 2 ? "_omega" : "_omega_" + axes.substr(d, 1)),
-              [b, d](const Row &r) { return r.statistics.body_angular_velocity[b][d]; });
+              [b, d](const Row &r) { return r.statistics.body_angular_velocity[b][d]; },
+              b);
       }
     if (with_contact)
       {
@@ -106,6 +111,23 @@ namespace sable::mpm
     error = Utilities::MPI::broadcast(communicator, error, 0);
     if (!error.empty())
       throw std::runtime_error(error);
+  }
+
+  template <int dim>
+  std::string
+  StatisticsFile<dim>::first_not_finite(const unsigned int     step,
+                                        const double           time,
+                                        const double           dt,
+                                        const double           boundary_work,
+                                        const Statistics<dim> &s) const
+  {
+    const Row row{static_cast<double>(step), time, dt, boundary_work, s};
+    for (const Column &column : columns)
+      if (!std::isfinite(column.value(row)) &&
+          !(column.body != numbers::invalid_unsigned_int && column.body < s.body_mass.size() &&
+            s.body_mass[column.body] == 0))
+        return column.name;
+    return "";
   }
 
   namespace

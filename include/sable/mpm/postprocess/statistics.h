@@ -91,6 +91,16 @@ namespace sable::mpm
               const double             boundary_work,
               const Statistics<dim> &  statistics);
 
+    /// The name of the first column whose value in this row is not a finite
+    /// number, or "" if all are (a body without points, e.g. one that left
+    /// the grid, has no position or velocity: its columns are not checked).
+    std::string
+    first_not_finite(const unsigned int     step,
+                     const double           time,
+                     const double           dt,
+                     const double           boundary_work,
+                     const Statistics<dim> &statistics) const;
+
   private:
     /// what one row is made of
     struct Row
@@ -105,6 +115,8 @@ namespace sable::mpm
     {
       std::string                        name;
       std::function<double(const Row &)> value;
+      /// the body a per-body column describes
+      unsigned int body = numbers::invalid_unsigned_int;
     };
     /// the file's columns, in order: the header and every row come from it
     std::vector<Column>            columns;
