@@ -25,9 +25,7 @@ namespace sable::mpm
           const auto         range = particle_handler.particles_in_cell(cell);
           const unsigned int index = cell->active_cell_index();
           slot[index]              = cells.size();
-          Point<dim>         lower = cell->vertex(0), upper;
-          for (unsigned int d = 0; d < dim; ++d)
-            upper[d] = cell->vertex(1u << d)[d];
+          const auto [lower, upper] = cell_box<dim>(cell);
           cells.push_back({cell, index, &grid.cell_data(cell), range, owned, lower, upper});
           particle = range.end();
         }

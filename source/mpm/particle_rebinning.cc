@@ -24,12 +24,12 @@ namespace sable::mpm
         Point<dim> near = x;
         if (periodicity.any())
           near += periodicity.image_shift(x, current->center());
-        unsigned int face = numbers::invalid_unsigned_int;
-        const Point<dim> &lower = current->vertex(0);
+        const auto [lower, upper] = cell_box<dim>(current);
+        unsigned int face         = numbers::invalid_unsigned_int;
         for (unsigned int d = 0; d < dim && face == numbers::invalid_unsigned_int; ++d)
           if (near[d] < lower[d])
             face = 2 * d;
-          else if (near[d] > current->vertex(1u << d)[d])
+          else if (near[d] > upper[d])
             face = 2 * d + 1;
         if (face == numbers::invalid_unsigned_int)
           return current;
@@ -67,14 +67,13 @@ namespace sable::mpm
   {
     // the points that stayed: their reference locations; the others are
     // listed, per range of cells, with their cell's index
-    std::map<unsigned int, std::vector<std::pair<unsigned int, ParticleIterator>>>
-                                                          leaving_per_range;
-    std::mutex                                            mutex;
+    std::map<unsigned int, std::vector<Leaving>> leaving_per_range;
+    std::mutex                                   mutex;
     parallel::apply_to_subranges(
       0u,
       cells.n_owned(),
       [&](const unsigned int begin, const unsigned int end) {
-        std::vector<std::pair<unsigned int, ParticleIterator>> left;
+        std::vector<Leaving> left;
         for (unsigned int c = begin; c < end; ++c)
           {
             const auto &cell = cells[c];
@@ -97,22 +96,19 @@ namespace sable::mpm
       16);
     // in the order the sort moves them: by cell index, and within a cell
     // in the container's order (whatever the threads)
-    std::vector<std::pair<unsigned int, ParticleIterator>> listed;
+    leaving.clear();
     for (const auto &range : leaving_per_range)
-      listed.insert(listed.end(), range.second.begin(), range.second.end());
-    std::stable_sort(listed.begin(), listed.end(), [](const auto &a, const auto &b) {
+      leaving.insert(leaving.end(), range.second.begin(), range.second.end());
+    std::stable_sort(leaving.begin(), leaving.end(), [](const Leaving &a, const Leaving &b) {
       return a.first < b.first;
     });
-    leaving.clear();
-    for (const auto &entry : listed)
-      leaving.push_back(entry.second);
 
     destination.resize(leaving.size());
     for (unsigned int i = 0; i < leaving.size(); ++i)
       {
-        destination[i] = find_cell(leaving[i]->get_surrounding_cell(),
-                                   leaving[i]->get_location(),
-                                   periodicity);
+        const ParticleIterator &particle = leaving[i].second;
+        destination[i] =
+          find_cell(particle->get_surrounding_cell(), particle->get_location(), periodicity);
         if (destination[i].state() != IteratorState::valid)
           return false;
       }
@@ -121,20 +117,19 @@ namespace sable::mpm
     // the removals do not disturb the points still to be removed
     for (unsigned int i = 0; i < leaving.size(); ++i)
       {
-        const auto &particle = leaving[i];
-        const auto  view     = particle->get_properties();
+        const ParticleIterator &particle = leaving[i].second;
+        const auto              view     = particle->get_properties();
         properties.assign(view.begin(), view.end());
-        const Point<dim> x     = particle->get_location();
-        const auto &     cell  = destination[i];
-        Point<dim>       reference = x;
-        reference -= cell->vertex(0);
-        for (unsigned int d = 0; d < dim; ++d)
-          reference[d] /= cell->vertex(1u << d)[d] - cell->vertex(0)[d];
-        particle_handler.insert_particle(
-          x, reference, particle->get_id(), cell, make_array_view(properties));
+        const Point<dim> x        = particle->get_location();
+        const auto [lower, upper] = cell_box<dim>(destination[i]);
+        particle_handler.insert_particle(x,
+                                         reference_location_in_box(x, lower, upper),
+                                         particle->get_id(),
+                                         destination[i],
+                                         make_array_view(properties));
       }
-    for (auto particle = leaving.rbegin(); particle != leaving.rend(); ++particle)
-      particle_handler.remove_particle(*particle);
+    for (auto entry = leaving.rbegin(); entry != leaving.rend(); ++entry)
+      particle_handler.remove_particle(entry->second);
     n_moved += leaving.size();
     return true;
   }

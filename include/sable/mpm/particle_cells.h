@@ -7,11 +7,38 @@
 #include <sable/mpm/cell_colouring.h>
 #include <sable/mpm/grid.h>
 
+#include <utility>
 #include <vector>
 
 namespace sable::mpm
 {
   using namespace dealii;
+
+  /// The box of an axis-aligned cell: vertex 0, and per direction d the
+  /// coordinate d of vertex 2^d.
+  template <int dim, typename CellIterator>
+  std::pair<Point<dim>, Point<dim>>
+  cell_box(const CellIterator &cell)
+  {
+    Point<dim> lower = cell->vertex(0), upper;
+    for (unsigned int d = 0; d < dim; ++d)
+      upper[d] = cell->vertex(1u << d)[d];
+    return {lower, upper};
+  }
+
+  /// The reference coordinates of @p x in the box [@p lower, @p upper],
+  /// (x - lower) / (upper - lower) per direction: the operations of
+  /// deal.II's MappingCartesian, so the same bits as its sort.
+  template <int dim>
+  Point<dim>
+  reference_location_in_box(const Point<dim> &x, const Point<dim> &lower, const Point<dim> &upper)
+  {
+    Point<dim> reference = x;
+    reference -= lower;
+    for (unsigned int d = 0; d < dim; ++d)
+      reference[d] /= upper[d] - lower[d];
+    return reference;
+  }
 
   /**
    * The cells that hold material points, as a flat list of the cell, its
@@ -54,16 +81,11 @@ namespace sable::mpm
         return true;
       }
 
-      /// The reference coordinates of @p x in the cell, (x - lower) / (upper -
-      /// lower) per direction, the operations of deal.II's MappingCartesian.
+      /// The reference coordinates of @p x in the cell.
       Point<dim>
       reference_location(const Point<dim> &x) const
       {
-        Point<dim> reference = x;
-        reference -= lower;
-        for (unsigned int d = 0; d < dim; ++d)
-          reference[d] /= upper[d] - lower[d];
-        return reference;
+        return reference_location_in_box(x, lower, upper);
       }
     };
 

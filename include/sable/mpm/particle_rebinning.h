@@ -6,6 +6,7 @@
 #include <sable/mpm/particle_cells.h>
 #include <sable/mpm/periodicity.h>
 
+#include <utility>
 #include <vector>
 
 namespace sable::mpm
@@ -82,8 +83,11 @@ namespace sable::mpm
 
     unsigned long long n_moved = 0;
 
-    /// the points that left their cells, in the container's order
-    std::vector<ParticleIterator> leaving;
+    /// a point that left its cell, with that cell's active index
+    using Leaving = std::pair<unsigned int, ParticleIterator>;
+    /// the points that left their cells, by old cell index and, within a
+    /// cell, in the container's order
+    std::vector<Leaving> leaving;
     /// per leaving point: its new cell
     std::vector<CellIterator> destination;
     /// one point's properties (a copy: inserting may move the pool)
