@@ -110,6 +110,7 @@ namespace sable::mpm
       return 0.;
     if constexpr (!momentum_update)
       {
+        boundary_conditions.count_heat_on_remapped(new_velocity, mass, n_owned_nodes());
         boundary_conditions.apply_to_remapped(new_velocity, mass);
         return 0.;
       }

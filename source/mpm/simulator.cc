@@ -137,6 +137,13 @@ namespace sable::mpm
                     "rank (run it on one rank; threads are allowed)");
       }
 
+    // MUSL maps the points' velocities back to the grid after each update:
+    // the friction heat is counted against them (MultiBodyContact)
+    const bool heat_at_remap = parameters.update_scheme == UpdateScheme::musl;
+    boundary_conditions.count_heat_at_remapped_velocities(heat_at_remap);
+    if (contact)
+      contact->count_heat_at_remapped_velocities(heat_at_remap, boundary_conditions);
+
     prescribed_velocities = PrescribedVelocities<dim>(parameters.bodies);
     if (prescribed_velocities.any())
       {

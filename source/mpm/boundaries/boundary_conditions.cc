@@ -157,6 +157,8 @@ namespace sable::mpm
     in_contact.assign(constraints.size(), -1.);
     out_of_reach.assign(constraints.size(), false);
     last_heat.assign(constraints.size(), 0.);
+    if (heat_at_remap)
+      tangential_change.assign(constraints.size() * dim, 0.);
     for (unsigned int i = 0; i < constraints.size(); ++i)
       {
         const NodeConstraint &c = constraints[i];
@@ -172,7 +174,17 @@ namespace sable::mpm
             out_of_reach[i] = true;
             continue;
           }
+        Tensor<1, dim> before;
+        for (unsigned int d = 0; d < dim; ++d)
+          before[d] = v[d];
         in_contact[i] = apply_one_counting(c, v, mass[c.node], last_heat[i]);
+        if (heat_at_remap)
+          {
+            last_heat[i]                 = 0;
+            const Tensor<1, dim> change = friction_change(c, before, v);
+            for (unsigned int d = 0; d < dim; ++d)
+              tangential_change[i * dim + d] = change[d];
+          }
         if (c.node < n_owned_nodes)
           frictional_heat += last_heat[i];
       }
@@ -218,6 +230,42 @@ namespace sable::mpm
           }
       }
     return false;
+  }
+
+  template <int dim>
+  Tensor<1, dim>
+  BoundaryConditions<dim>::friction_change(const NodeConstraint &c,
+                                           const Tensor<1, dim> &before,
+                                           const double *        after) const
+  {
+    Tensor<1, dim> change;
+    if (parameters.find(c.id)->second.type != BoundaryType::friction)
+      return change;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d != c.direction)
+        change[d] = after[d] - before[d];
+    return change;
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::count_heat_on_remapped(const std::vector<double> &velocity,
+                                                  const std::vector<double> &mass,
+                                                  const unsigned int         n_owned_nodes)
+  {
+    if (!heat_at_remap || tangential_change.size() != constraints.size() * dim)
+      return;
+    for (unsigned int i = 0; i < constraints.size(); ++i)
+      {
+        const unsigned int node = constraints[i].node;
+        if (node >= n_owned_nodes)
+          continue;
+        // no positive work on the slip (MultiBodyContact does the same)
+        double heat = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          heat -= mass[node] * tangential_change[i * dim + d] * velocity[node * dim + d];
+        frictional_heat += std::max(heat, 0.);
+      }
   }
 
   template <int dim>
@@ -281,12 +329,23 @@ namespace sable::mpm
           const bool counted = !remapped && constraints[i].node < n_owned_nodes;
           if (counted)
             frictional_heat -= last_heat[i];
+          // the records count the heat at contact nodes
+          if (!remapped && heat_at_remap)
+            for (unsigned int d = 0; d < dim; ++d)
+              tangential_change[i * dim + d] = 0;
           const auto [begin, end] = fields.node_records(constraints[i].node);
           for (auto *r = begin; r != end; ++r)
             if (r->mass > 0.)
               {
                 if (!counted)
                   apply_one(constraints[i], &r->new_velocity[0], remapped, in_contact[i]);
+                else if (heat_at_remap)
+                  {
+                    const Tensor<1, dim> before = r->new_velocity;
+                    double               heat   = 0;
+                    apply_one_counting(constraints[i], &r->new_velocity[0], r->mass, heat);
+                    r->wall_change += friction_change(constraints[i], before, &r->new_velocity[0]);
+                  }
                 else
                   {
                     double heat = 0;

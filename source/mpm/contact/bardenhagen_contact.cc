@@ -185,8 +185,10 @@ namespace sable::mpm
     auto &own               = scratch.own;
     auto &tangential_speed  = scratch.tangential_speed;
     auto &tangential_change = scratch.tangential_change;
+    auto &friction          = scratch.friction;
     normal.resize(n);
     change.resize(n);
+    friction.resize(n);
     tangential_speed.resize(n);
     tangential_change.resize(n);
 
@@ -277,6 +279,7 @@ namespace sable::mpm
       {
         const Record &r = begin[a];
         change[a]           = 0;
+        friction[a]         = 0;
         tangential_speed[a] = tangential_change[a] = 0;
         const Tensor<1, dim> dv = r.new_velocity - centre_of_mass_velocity;
         const double         dv_n = dv * normal[a];
@@ -293,6 +296,7 @@ namespace sable::mpm
                                                       body_groups[begin[other].body]);
         const CoulombCorrection<dim> correction = coulomb_correction(dv, normal[a], mu);
         change[a]                               = correction.change;
+        friction[a]                             = correction.friction;
         tangential_speed[a]                     = correction.tangential_speed;
         tangential_change[a]                    = correction.tangential_change;
         if (use_traction && std::isfinite(mu))
@@ -315,6 +319,7 @@ namespace sable::mpm
                 // the normal part stays, the friction part shrinks
                 const Tensor<1, dim> normal_part = -dv_n * normal[a];
                 change[a] = normal_part + capped->second * (correction.change - normal_part);
+                friction[a] *= capped->second;
                 tangential_change[a] *= capped->second;
               }
           }
@@ -342,9 +347,10 @@ namespace sable::mpm
         if (record_forces)
           {
             r.normal        = normal[a];
-            r.contact_force = r.mass * scale * change[a] / dt;
-            r.state         = change[a].norm() == 0 ? 0 :
-                              tangential_change[a] < tangential_speed[a] ? 2 : 1;
+            r.contact_force  = r.mass * scale * change[a] / dt;
+            r.friction_force = r.mass * scale * friction[a] / dt;
+            r.state          = change[a].norm() == 0 ? 0 :
+                               tangential_change[a] < tangential_speed[a] ? 2 : 1;
           }
         if (!owned)
           continue;
@@ -359,7 +365,7 @@ namespace sable::mpm
         // (impulse scaling) only an approach that the bodies' stresses
         // then take up.
         const double tau = scale * tangential_change[a];
-        if (record_forces)
+        if (record_forces && heat_at_nodes)
           sums.frictional_heat += r.mass * tau * (tangential_speed[a] - tau);
         if (record_forces && n >= 2)
           for (unsigned int b = 0; b < n; ++b)
@@ -466,9 +472,11 @@ namespace sable::mpm
     auto &             change   = scratch.change;
     auto &             slipping = scratch.slipping;
     auto &             pairs    = scratch.pairs;
+    auto &             friction = scratch.friction;
     normal.resize(n);
     velocity.resize(n);
     change.resize(n);
+    friction.assign(n, Tensor<1, dim>());
     slipping.assign(n, false);
     pairs.clear();
     double total_mass = 0;
@@ -507,6 +515,7 @@ namespace sable::mpm
             parameters.friction_between(body_groups[ra.body], body_groups[rb.body]);
           const CoulombCorrection<dim> correction = coulomb_correction(dv, common, mu);
           Tensor<1, dim>               change_a   = correction.change;
+          Tensor<1, dim>               friction_a = correction.friction;
           double                       tau        = correction.tangential_change;
           if (use_traction && std::isfinite(mu))
             {
@@ -519,11 +528,14 @@ namespace sable::mpm
                 {
                   const Tensor<1, dim> normal_part = -dv_n * common;
                   change_a = normal_part + capped->second * (change_a - normal_part);
+                  friction_a *= capped->second;
                   tau *= capped->second;
                 }
             }
           velocity[a] += change_a;
           velocity[b] -= (ra.mass / rb.mass) * change_a;
+          friction[a] += friction_a;
+          friction[b] -= (ra.mass / rb.mass) * friction_a;
           // the friction impulse m_a tau times the relative slip left,
           // (M / m_b)(|dv_t| - tau), per unit impulse scale
           pairs.push_back({a, b, change_a, tau, correction.tangential_speed,
@@ -561,8 +573,9 @@ namespace sable::mpm
         if (record_forces)
           {
             r.normal        = normal[a];
-            r.contact_force = r.mass * scale * change[a] / dt;
-            r.state         = change[a].norm() == 0 ? 0 : slipping[a] ? 2 : 1;
+            r.contact_force  = r.mass * scale * change[a] / dt;
+            r.friction_force = r.mass * scale * friction[a] / dt;
+            r.state          = change[a].norm() == 0 ? 0 : slipping[a] ? 2 : 1;
           }
         if (owned)
           {
@@ -577,7 +590,8 @@ namespace sable::mpm
       for (const auto &pair : pairs)
         {
           const double tau = scale * pair.tau;
-          sums.frictional_heat += pair.heat_mass * tau * (pair.slip_speed - tau);
+          if (heat_at_nodes)
+            sums.frictional_heat += pair.heat_mass * tau * (pair.slip_speed - tau);
           const unsigned int index = pair_index(begin[pair.a].body, begin[pair.b].body);
           if (index != BodyFields<dim>::invalid)
             sums.pair_forces[index] += begin[pair.a].mass * scale * pair.change / dt;

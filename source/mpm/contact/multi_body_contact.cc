@@ -143,6 +143,8 @@ namespace sable::mpm
           }
       },
       256);
+    if (!momentum_update && heat_at_remap)
+      count_heat_at_remapped_velocities(boundary_conditions, time_step, n_owned_nodes);
     const bool drivers = prescribed != nullptr && prescribed->any();
     if (momentum_update)
       {
@@ -162,6 +164,55 @@ namespace sable::mpm
       hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())
       boundary_conditions.apply_to_bodies(fields, !momentum_update, n_owned_nodes);
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::count_heat_at_remapped_velocities(
+    BoundaryConditions<dim> &boundary_conditions,
+    const double             time_step,
+    const unsigned int       n_owned_nodes)
+  {
+    const std::vector<unsigned int> &nodes      = fields.get_contact_nodes();
+    constexpr unsigned int           chunk_size = 256;
+    const unsigned int               n_chunks   = (nodes.size() + chunk_size - 1) / chunk_size;
+    // per chunk: the contact's and the walls' heat
+    std::vector<std::pair<double, double>> chunk_heat(n_chunks, {0., 0.});
+    parallel::apply_to_subranges(
+      0u,
+      n_chunks,
+      [&](const unsigned int first_chunk, const unsigned int last_chunk) {
+        for (unsigned int chunk = first_chunk; chunk < last_chunk; ++chunk)
+          {
+            const unsigned int last =
+              std::min<unsigned int>((chunk + 1) * chunk_size, nodes.size());
+            for (unsigned int i = chunk * chunk_size; i < last; ++i)
+              {
+                if (nodes[i] >= n_owned_nodes)
+                  continue;
+                // friction does no positive work on the slip: a node whose
+                // bodies' points moved, after the step, along the impulses
+                // they got (the correction overshot, or noise where they
+                // stick) adds no heat
+                const auto [begin, end] = fields.node_records(nodes[i]);
+                double contact_heat = 0, wall_heat = 0;
+                for (const Record *r = begin; r != end; ++r)
+                  if (r->mass > 0.)
+                    {
+                      contact_heat -= time_step * (r->friction_force * r->new_velocity);
+                      wall_heat -= r->mass * (r->wall_change * r->new_velocity);
+                    }
+                chunk_heat[chunk].first += std::max(contact_heat, 0.);
+                chunk_heat[chunk].second += std::max(wall_heat, 0.);
+              }
+          }
+      },
+      1);
+    for (const auto &[contact_heat, wall_heat] : chunk_heat)
+      {
+        model.frictional_heat += contact_heat;
+        boundary_conditions.frictional_heat += wall_heat;
+      }
   }
 
   template <int dim>

@@ -93,11 +93,31 @@ namespace sable::mpm
                     const bool         remapped,
                     const unsigned int n_owned_nodes);
 
-    /// Friction heat of the walls so far, the work of their forces
-    /// against the nodes' velocities relative to them after the correction,
-    /// -sum m (v' - v) . (v' - v_wall) over the momentum updates (this
-    /// rank's owned nodes): wall friction on sliding nodes.
+    /// Friction heat of the walls so far (this rank's owned nodes): the
+    /// work of their forces against the nodes' velocities relative to them
+    /// after the correction, -sum m (v' - v) . (v' - v_wall) over the
+    /// momentum updates; or, with count_heat_at_remapped_velocities(), the
+    /// friction walls' tangential impulses against the remapped velocities
+    /// (count_heat_on_remapped()).
     double frictional_heat = 0;
+
+    /// Count the friction walls' heat in MUSL's remapped pass
+    /// (count_heat_on_remapped()) instead of at the corrected velocities;
+    /// see MultiBodyContact::count_heat_at_remapped_velocities().
+    void
+    count_heat_at_remapped_velocities(const bool remapped)
+    {
+      heat_at_remap = remapped;
+    }
+
+    /// With count_heat_at_remapped_velocities(): before apply_to_remapped(),
+    /// add -m dv_t . v to frictional_heat at the owned nodes without
+    /// contact, for each friction wall's tangential change dv_t in the last
+    /// apply() and the remapped velocity v.
+    void
+    count_heat_on_remapped(const std::vector<double> &velocity,
+                           const std::vector<double> &mass,
+                           const unsigned int         n_owned_nodes);
 
     bool
     has_moving_walls() const
@@ -157,6 +177,16 @@ namespace sable::mpm
     std::vector<bool> out_of_reach;
     /// per constraint: what it added to frictional_heat in the last apply()
     std::vector<double> last_heat;
+    bool heat_at_remap = false;
+    /// per constraint, with heat_at_remap: a friction wall's tangential
+    /// velocity change in the last apply() (dim values; zero at contact
+    /// nodes, whose records keep their own)
+    std::vector<double> tangential_change;
+
+    /// The tangential part of the change a friction wall @p c made, from
+    /// @p before to @p after (zero for the other walls).
+    Tensor<1, dim>
+    friction_change(const NodeConstraint &c, const Tensor<1, dim> &before, const double *after) const;
     const double *    material_extent = nullptr;
     const double *    mass_moment      = nullptr;
     double            extent_time_step = 0.;

@@ -59,9 +59,21 @@ namespace sable::mpm
           const bool                         record_forces,
           const MPI_Comm                     communicator = MPI_COMM_SELF);
 
-    /// Frictional work converted to heat so far, the friction impulses
-    /// times the slip they leave (this rank's nodes; Statistics::contact_heat).
+    /// Frictional work converted to heat so far (this rank's nodes;
+    /// Statistics::contact_heat): the friction impulses times the slip the
+    /// bodies show afterwards, which MultiBodyContact counts at the
+    /// remapped velocities under MUSL; here, at the nodes, under USL
+    /// (count_heat_at_nodes()).
     double frictional_heat = 0;
+
+    /// Whether apply() counts the heat from the nodal velocities the
+    /// correction leaves (USL; the default), or leaves it to the remapped
+    /// velocities (MUSL).
+    void
+    count_heat_at_nodes(const bool at_nodes)
+    {
+      heat_at_nodes = at_nodes;
+    }
     /// Momentum the corrections did not conserve, sum over nodes of
     /// |sum_a m_a dv_a| (non-zero only at nodes with three or more bodies),
     /// and the size of the corrections, sum over nodes and bodies of
@@ -96,7 +108,7 @@ namespace sable::mpm
     /// bodies), one per thread.
     struct Scratch
     {
-      std::vector<Tensor<1, dim>> normal, change, own;
+      std::vector<Tensor<1, dim>> normal, change, own, friction;
       std::vector<double>         tangential_speed, tangential_change;
       std::vector<bool>           slipping;
       /// pairwise contact: the change of the pair's first body and the
@@ -179,6 +191,7 @@ namespace sable::mpm
     /// index into pair_forces of the pair (a, b), a < b; or invalid
     std::vector<unsigned int> reported_pair_index;
     const bool                use_traction;
+    bool                      heat_at_nodes = true;
     /// surfaces closer than this, in cells, touch (surfaces_meet())
     static constexpr double touching_tolerance = 0.01;
     /// sideways offset of the centroids, in cells, that surfaces_meet()

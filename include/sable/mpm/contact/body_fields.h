@@ -48,7 +48,12 @@ namespace sable::mpm
       /// (0 free, 1 stick, 2 slip)
       Tensor<1, dim> normal;
       Tensor<1, dim> contact_force;
+      /// the friction part of contact_force
+      Tensor<1, dim> friction_force;
       unsigned int   state;
+      /// the friction walls' tangential velocity change in the momentum
+      /// update, for their heat at the remapped velocities
+      Tensor<1, dim> wall_change;
     };
 
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;

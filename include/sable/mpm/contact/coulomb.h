@@ -14,8 +14,9 @@ namespace sable::mpm
   template <int dim>
   struct CoulombCorrection
   {
-    /// the velocity change
+    /// the velocity change, and its friction (tangential) part
     Tensor<1, dim> change;
+    Tensor<1, dim> friction;
     /// |dv_t| before the correction, and how much of it was removed
     double tangential_speed  = 0;
     double tangential_change = 0;
@@ -51,13 +52,17 @@ namespace sable::mpm
     if (std::isinf(mu))
       {
         result.change            = -relative_velocity;
+        result.friction          = -dv_t;
         result.tangential_change = result.tangential_speed;
         return result;
       }
     const double tau = std::min(mu * std::max(dv_n, 0.), result.tangential_speed);
     result.change    = -dv_n * normal;
-    if (result.tangential_speed > 0)
-      result.change -= (tau / result.tangential_speed) * dv_t;
+    if (result.tangential_speed > 0 && tau > 0)
+      {
+        result.friction = -(tau / result.tangential_speed) * dv_t;
+        result.change += result.friction;
+      }
     result.tangential_change = tau;
     return result;
   }

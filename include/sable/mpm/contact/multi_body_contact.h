@@ -165,6 +165,27 @@ namespace sable::mpm
       return fields;
     }
 
+    /**
+     * With @p remapped (MUSL), the friction heat of the contact and of the
+     * friction walls at contact nodes is counted in the remapped-momenta
+     * pass, as each record's friction impulse of the momentum update
+     * times the velocity its body's points show after it, mapped back to
+     * the grid: -dt F_t . v, summed over a node's bodies the impulse times
+     * their relative slip. The nodal velocities after the correction are
+     * not the points' (a record of little mass carries f dt / m of its
+     * force, which the points see only in part), and heat counted from
+     * them grows with that noise. Without, the heat is counted at the
+     * nodes (USL).
+     */
+    void
+    count_heat_at_remapped_velocities(const bool remapped,
+                                      BoundaryConditions<dim> &boundary_conditions)
+    {
+      heat_at_remap = remapped;
+      model.count_heat_at_nodes(!remapped);
+      boundary_conditions.count_heat_at_remapped_velocities(remapped);
+    }
+
     /// The contact kernel, with its running sums (heat, pair forces).
     BardenhagenContact<dim> &
     get_model()
@@ -189,6 +210,18 @@ namespace sable::mpm
     /// velocity again, and (with @p record_work) the work they did.
     void
     hold_drivers(const bool before, const bool record_work, const unsigned int n_owned_nodes);
+
+    /// In the remapped pass, before any correction: add each owned record's
+    /// -dt F_t . v to the contact's heat (F_t: the friction part of its
+    /// contact force) and -m dv_t . v to the walls' (dv_t: the friction
+    /// walls' tangential change in the momentum update), v the remapped
+    /// velocity; summed chunk by chunk, the same for any number of threads.
+    void
+    count_heat_at_remapped_velocities(BoundaryConditions<dim> &boundary_conditions,
+                                      const double             time_step,
+                                      const unsigned int       n_owned_nodes);
+
+    bool heat_at_remap = false;
 
     const PrescribedVelocities<dim> *prescribed  = nullptr;
     double                           driver_work = 0;
