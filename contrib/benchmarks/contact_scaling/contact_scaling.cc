@@ -10,6 +10,7 @@
 //
 // Usage: contact_scaling [cells per direction = 256] [steps = 40]
 //                        [pairwise (default) | centre-of-mass]
+//                        [grains per side: only this tiling]
 // (the treatment of nodes with three or more bodies)
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
@@ -23,6 +24,7 @@
 #include <iostream>
 #include <random>
 #include <string>
+#include <vector>
 
 using namespace dealii;
 using namespace sable::mpm;
@@ -98,7 +100,10 @@ main(int argc, char **argv)
   std::cout << "| grains | material points | contact none, s/step | bardenhagen 2001, s/step | "
                "contact / none | momentum defect / correction |\n|---|---|---|---|---|---|"
             << std::endl;
-  for (const unsigned int per_side : {1u, 4u, 10u, 32u, 100u})
+  std::vector<unsigned int> tilings = {1u, 4u, 10u, 32u, 100u};
+  if (argc > 4)
+    tilings = {static_cast<unsigned int>(std::stoi(argv[4]))};
+  for (const unsigned int per_side : tilings)
     {
       unsigned long long n_particles = 0;
       double             defect      = 0;
