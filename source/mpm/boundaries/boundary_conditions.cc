@@ -181,7 +181,7 @@ namespace sable::mpm
         if (heat_at_remap)
           {
             last_heat[i]                 = 0;
-            const Tensor<1, dim> change = friction_change(c, before, v);
+            const Tensor<1, dim> change = friction_change(c, before, v, in_contact[i]);
             for (unsigned int d = 0; d < dim; ++d)
               tangential_change[i * dim + d] = change[d];
           }
@@ -236,10 +236,13 @@ namespace sable::mpm
   Tensor<1, dim>
   BoundaryConditions<dim>::friction_change(const NodeConstraint &c,
                                            const Tensor<1, dim> &before,
-                                           const double *        after) const
+                                           const double *        after,
+                                           const double          held) const
   {
+    // static friction does no work: only a node that slips (the wall
+    // removed less than all of its tangential velocity) counts
     Tensor<1, dim> change;
-    if (parameters.find(c.id)->second.type != BoundaryType::friction)
+    if (parameters.find(c.id)->second.type != BoundaryType::friction || held < 0. || held >= 1.)
       return change;
     for (unsigned int d = 0; d < dim; ++d)
       if (d != c.direction)
@@ -343,8 +346,10 @@ namespace sable::mpm
                   {
                     const Tensor<1, dim> before = r->new_velocity;
                     double               heat   = 0;
-                    apply_one_counting(constraints[i], &r->new_velocity[0], r->mass, heat);
-                    r->wall_change += friction_change(constraints[i], before, &r->new_velocity[0]);
+                    const double         held =
+                      apply_one_counting(constraints[i], &r->new_velocity[0], r->mass, heat);
+                    r->wall_change +=
+                      friction_change(constraints[i], before, &r->new_velocity[0], held);
                   }
                 else
                   {

@@ -348,7 +348,10 @@ namespace sable::mpm
           {
             r.normal        = normal[a];
             r.contact_force  = r.mass * scale * change[a] / dt;
-            r.friction_force = r.mass * scale * friction[a] / dt;
+            // static friction does no work: only a slipping body's counts
+            r.friction_force = tangential_change[a] < tangential_speed[a] ?
+                                 Tensor<1, dim>(r.mass * scale * friction[a] / dt) :
+                                 Tensor<1, dim>();
             r.state          = change[a].norm() == 0 ? 0 :
                                tangential_change[a] < tangential_speed[a] ? 2 : 1;
           }
@@ -534,8 +537,12 @@ namespace sable::mpm
             }
           velocity[a] += change_a;
           velocity[b] -= (ra.mass / rb.mass) * change_a;
-          friction[a] += friction_a;
-          friction[b] -= (ra.mass / rb.mass) * friction_a;
+          // static friction does no work: only a slipping pair's counts
+          if (tau < correction.tangential_speed)
+            {
+              friction[a] += friction_a;
+              friction[b] -= (ra.mass / rb.mass) * friction_a;
+            }
           // the friction impulse m_a tau times the relative slip left,
           // (M / m_b)(|dv_t| - tau), per unit impulse scale
           pairs.push_back({a, b, change_a, tau, correction.tangential_speed,

@@ -184,9 +184,14 @@ namespace sable::mpm
     std::vector<double> tangential_change;
 
     /// The tangential part of the change a friction wall @p c made, from
-    /// @p before to @p after (zero for the other walls).
+    /// @p before to @p after, if the node slips (@p held, the fraction of
+    /// the tangential velocity removed, below 1); zero for a node it holds
+    /// or did not touch and for the other walls.
     Tensor<1, dim>
-    friction_change(const NodeConstraint &c, const Tensor<1, dim> &before, const double *after) const;
+    friction_change(const NodeConstraint &c,
+                    const Tensor<1, dim> &before,
+                    const double *        after,
+                    const double          held) const;
     const double *    material_extent = nullptr;
     const double *    mass_moment      = nullptr;
     double            extent_time_step = 0.;

@@ -48,7 +48,8 @@ namespace sable::mpm
       /// (0 free, 1 stick, 2 slip)
       Tensor<1, dim> normal;
       Tensor<1, dim> contact_force;
-      /// the friction part of contact_force
+      /// the friction part of contact_force where the body slips (zero
+      /// where it sticks: static friction does no work)
       Tensor<1, dim> friction_force;
       unsigned int   state;
       /// the friction walls' tangential velocity change in the momentum

@@ -171,7 +171,9 @@ namespace sable::mpm
      * pass, as each record's friction impulse of the momentum update
      * times the velocity its body's points show after it, mapped back to
      * the grid: -dt F_t . v, summed over a node's bodies the impulse times
-     * their relative slip. The nodal velocities after the correction are
+     * their relative slip, at least zero per node; F_t only where the
+     * correction slips (static friction does no work). The nodal
+     * velocities after the correction are
      * not the points' (a record of little mass carries f dt / m of its
      * force, which the points see only in part), and heat counted from
      * them grows with that noise. Without, the heat is counted at the
