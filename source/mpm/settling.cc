@@ -11,27 +11,27 @@ namespace sable::mpm
   void
   Simulator<dim>::settle_under_gravity()
   {
-    double mass = 0;
     for (auto &particle : *particle_handler)
       {
         auto props = particle.get_properties();
         for (unsigned int d = 0; d < dim; ++d)
           props[layout.velocity + d] = 0.;
-        mass += props[layout.mass];
       }
     const auto publish_velocities = [&]() {
       if (contact && parallel)
         particle_handler->update_ghost_particles();
     };
     publish_velocities();
-    const double tolerance = 1e-6 * Utilities::MPI::sum(mass, communicator) *
-                             parameters.gravity.norm() * grid.minimum_cell_size();
 
     // kinetic damping: step at rest under gravity, and whenever the kinetic
     // energy has passed a peak, take all of it away; settled when a peak
-    // stays below the tolerance
+    // stays below the tolerance times the strain energy. The energy left
+    // rings on, and a contact held by friction near its limit slips where
+    // the ringing adds to the load: the tolerance is relative to the
+    // stored energy, which sets the forces, not to the mass and the cell
     double       previous = 0, kinetic = 0, peak = std::numeric_limits<double>::max();
-    unsigned int n        = 0;
+    double       strain_energy = 0;
+    unsigned int n             = 0;
     for (; n < parameters.settling_steps; ++n)
       {
         advance();
@@ -46,8 +46,9 @@ namespace sable::mpm
         kinetic = Utilities::MPI::sum(kinetic, communicator);
         if (kinetic < previous)
           {
-            peak = previous;
-            if (peak <= tolerance)
+            peak          = previous;
+            strain_energy = compute_statistics().strain_energy;
+            if (peak <= parameters.settling_tolerance * strain_energy)
               break;
             for (auto &particle : *particle_handler)
               for (unsigned int d = 0; d < dim; ++d)
@@ -58,15 +59,17 @@ namespace sable::mpm
         else
           previous = kinetic;
       }
-    check_input(peak <= tolerance,
+    check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
                 parameters.settling_steps,
                 "enough steps for the bodies to settle (" +
                   (peak <= std::numeric_limits<double>::max() / 2 ?
-                     "the last peak of the kinetic energy was " + std::to_string(peak) + " J" :
+                     "the last peak of the kinetic energy was " + std::to_string(peak) +
+                       " J, above 'Solver/Settling tolerance' = " +
+                       std::to_string(parameters.settling_tolerance) + " times the strain energy " +
+                       std::to_string(strain_energy) + " J" :
                      "the kinetic energy was still rising, " + std::to_string(kinetic) + " J") +
-                  ", above the tolerance " + std::to_string(tolerance) +
-                  " J; a body free to slide or roll under the gravity, such as a disk "
+                  "; a body free to slide or roll under the gravity, such as a disk "
                   "on a slope, never settles)");
     pcout << "Settled under gravity in " << n + 1 << " steps (" << state.time
           << " s of damped motion)" << std::endl;

@@ -69,6 +69,9 @@ namespace sable::mpm
     /// damping) for at most this many steps, then give them their initial
     /// velocities; 0 = start as seeded (Solver/Settling steps).
     unsigned int settling_steps = 0;
+    /// Settled when a peak of the kinetic energy is below this fraction of
+    /// the strain energy (Solver/Settling tolerance).
+    double settling_tolerance = 1e-8;
 
     /// Grid/Shape functions: linear, or GIMP on a uniform grid on one rank.
     ShapeFunctions shape_functions = ShapeFunctions::linear;
