@@ -111,7 +111,7 @@ namespace sable::mpm
                       "square root of this fraction of the settled forces "
                       "(1e-8: 1e-4). A block held by friction 4% above its "
                       "slope creeps 5% of a cell in 0.5 s when the ringing "
-                      "is 8% of its weight, 1e-4 cell at 1e-8.");
+                      "is 8% of its weight, 1e-7 cell at 1e-8.");
     prm.leave_subsection();
 
     prm.enter_subsection("Grid");

@@ -32,6 +32,7 @@ namespace sable::mpm
     double       previous = 0, kinetic = 0, peak = std::numeric_limits<double>::max();
     double       strain_energy = 0;
     unsigned int n             = 0;
+    settling                   = true;
     for (; n < parameters.settling_steps; ++n)
       {
         advance();
@@ -59,6 +60,7 @@ namespace sable::mpm
         else
           previous = kinetic;
       }
+    settling = false;
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
                 parameters.settling_steps,

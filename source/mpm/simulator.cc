@@ -456,7 +456,7 @@ namespace sable::mpm
   Simulator<dim>::compute_time_step() const
   {
     double dt = parameters.cfl * grid.minimum_cell_size() / state.max_signal_speed;
-    if (state.time + dt > parameters.end_time)
+    if (!settling && state.time + dt > parameters.end_time)
       dt = parameters.end_time - state.time;
     return dt;
   }

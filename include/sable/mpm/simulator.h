@@ -367,6 +367,9 @@ namespace sable::mpm
     std::unique_ptr<MeshRefinement<dim>> mesh_refinement;
 
     RunState state;
+    /// while settle_under_gravity() runs: its clock is not the run's, so
+    /// its steps are not cut at the end time
+    bool settling = false;
 
     unsigned long long lost_particles = 0;
     Point<dim>         lost_location;
