@@ -63,7 +63,8 @@ namespace sable::mpm
   bool
   ParticleRebinning<dim>::rebin(Particles::ParticleHandler<dim> &particle_handler,
                                 const ParticleCells<dim> &       cells,
-                                const Periodicity<dim> &         periodicity)
+                                const Periodicity<dim> &         periodicity,
+                                const std::size_t                max_moves)
   {
     // the points that stayed: their reference locations; the others are
     // listed, per range of cells, with their cell's index
@@ -103,6 +104,8 @@ namespace sable::mpm
       return a.first < b.first;
     });
 
+    if (leaving.size() > max_moves)
+      return false;
     destination.resize(leaving.size());
     for (unsigned int i = 0; i < leaving.size(); ++i)
       {

@@ -968,11 +968,12 @@ namespace sable::mpm
     if (points_left_cells)
       {
         // on one rank the points that left are moved on their own, unless
-        // one left the grid or the moves since the last sort call for one
-        rebinned = !parallel &&
-                   rebinning.moved_since_full_sort() <
-                     full_sort_fraction * particle_handler->n_locally_owned_particles() &&
-                   rebinning.rebin(*particle_handler, particle_cells, grid.periodicity());
+        // one left the grid, the moves since the last sort call for one, or
+        // more left in this step than the room reserved for moves
+        const auto room = static_cast<std::size_t>(
+          full_sort_fraction * particle_handler->n_locally_owned_particles());
+        rebinned = !parallel && rebinning.moved_since_full_sort() < room &&
+                   rebinning.rebin(*particle_handler, particle_cells, grid.periodicity(), room);
         if (!rebinned)
           {
             particle_handler->sort_particles_into_subdomains_and_cells();

@@ -9,7 +9,8 @@
 // order). Cases, 2D and 3D: a uniform grid; a grid periodic along x whose
 // points cross the seam; a grid refined once on one half and twice in a
 // corner (points moving between coarse and finer cells). A point moved out
-// of the grid makes rebin() report that a sort is needed.
+// of the grid, or more points leaving than the room for moves, makes
+// rebin() report that a sort is needed, with no point moved.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -178,6 +179,32 @@ namespace
     check(label + ": points moved between cells", rebinning.moved_since_full_sort() > 5 * id);
     if (periodic_x)
       check(label + ": points crossed the periodic seam", seam_crossings > id / 10);
+
+    // more points leaving in one step than the room for moves: left to the
+    // sort, with no point moved (each move is inserted before its old copy
+    // goes; beyond the room reserved the particle data would double)
+    for (auto &particle : rebinned)
+      {
+        Point<dim> y = particle.get_location();
+        y[0]         = std::clamp(y[0] + 0.9 * smallest, 0., 1.);
+        periodicity.wrap(y);
+        particle.set_location(y);
+      }
+    cells.rebuild(rebinned, grid, colouring);
+    const unsigned long long moved_before = rebinning.moved_since_full_sort();
+    std::vector<unsigned int> cell_before;
+    for (const auto &particle : rebinned)
+      cell_before.push_back(particle.get_surrounding_cell()->active_cell_index());
+    const bool refused = !rebinning.rebin(rebinned, cells, periodicity, 1);
+    bool       unmoved = rebinning.moved_since_full_sort() == moved_before &&
+                   rebinned.n_locally_owned_particles() == cell_before.size();
+    unsigned int k = 0;
+    for (const auto &particle : rebinned)
+      unmoved = unmoved && k < cell_before.size() &&
+                particle.get_surrounding_cell()->active_cell_index() == cell_before[k++];
+    check(label + ": more points leaving than the room for moves are left to the sort, none moved",
+          refused && unmoved);
+    rebinned.sort_particles_into_subdomains_and_cells();
 
     // a point outside the grid (across a face that is not periodic): the
     // rebinning leaves it to the sort

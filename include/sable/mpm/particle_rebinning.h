@@ -6,6 +6,7 @@
 #include <sable/mpm/particle_cells.h>
 #include <sable/mpm/periodicity.h>
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -51,12 +52,16 @@ namespace sable::mpm
      * (which must describe @p particle_handler as it is) and move the
      * points that left their cells. Returns false, with nothing changed
      * but reference locations, if a point could not be placed (it left the
-     * grid): the caller then sorts.
+     * grid) or more than @p max_moves points left: the caller then sorts.
+     * Each move is inserted before its old copy goes, so a step's moves
+     * need as many free slots in the particle data: beyond the room the
+     * caller reserved, the data would double.
      */
     bool
     rebin(Particles::ParticleHandler<dim> &particle_handler,
           const ParticleCells<dim> &       cells,
-          const Periodicity<dim> &         periodicity);
+          const Periodicity<dim> &         periodicity,
+          const std::size_t                max_moves = std::numeric_limits<std::size_t>::max());
 
     /// Points moved by rebin() since reset(), summed over the calls.
     unsigned long long
