@@ -100,12 +100,12 @@ namespace sable::mpm
     leaving.clear();
     for (const auto &range : leaving_per_range)
       leaving.insert(leaving.end(), range.second.begin(), range.second.end());
+    if (leaving.size() > max_moves)
+      return false;
     std::stable_sort(leaving.begin(), leaving.end(), [](const Leaving &a, const Leaving &b) {
       return a.first < b.first;
     });
 
-    if (leaving.size() > max_moves)
-      return false;
     destination.resize(leaving.size());
     for (unsigned int i = 0; i < leaving.size(); ++i)
       {

@@ -142,7 +142,7 @@ namespace sable::mpm
     const bool heat_at_remap = parameters.update_scheme == UpdateScheme::musl;
     boundary_conditions.count_heat_at_remapped_velocities(heat_at_remap);
     if (contact)
-      contact->count_heat_at_remapped_velocities(heat_at_remap, boundary_conditions);
+      contact->count_heat_at_remapped_velocities(heat_at_remap);
 
     prescribed_velocities = PrescribedVelocities<dim>(parameters.bodies);
     if (prescribed_velocities.any())

@@ -175,8 +175,9 @@ namespace sable::mpm
             continue;
           }
         Tensor<1, dim> before;
-        for (unsigned int d = 0; d < dim; ++d)
-          before[d] = v[d];
+        if (heat_at_remap)
+          for (unsigned int d = 0; d < dim; ++d)
+            before[d] = v[d];
         in_contact[i] = apply_one_counting(c, v, mass[c.node], last_heat[i]);
         if (heat_at_remap)
           {

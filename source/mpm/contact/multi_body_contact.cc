@@ -144,7 +144,7 @@ namespace sable::mpm
       },
       256);
     if (!momentum_update && heat_at_remap)
-      count_heat_at_remapped_velocities(boundary_conditions, time_step, n_owned_nodes);
+      count_heat_on_remapped(boundary_conditions, time_step, n_owned_nodes);
     const bool drivers = prescribed != nullptr && prescribed->any();
     if (momentum_update)
       {
@@ -168,10 +168,9 @@ namespace sable::mpm
 
   template <int dim>
   void
-  MultiBodyContact<dim>::count_heat_at_remapped_velocities(
-    BoundaryConditions<dim> &boundary_conditions,
-    const double             time_step,
-    const unsigned int       n_owned_nodes)
+  MultiBodyContact<dim>::count_heat_on_remapped(BoundaryConditions<dim> &boundary_conditions,
+                                                const double             time_step,
+                                                const unsigned int       n_owned_nodes)
   {
     const std::vector<unsigned int> &nodes      = fields.get_contact_nodes();
     constexpr unsigned int           chunk_size = 256;

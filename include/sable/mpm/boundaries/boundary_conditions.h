@@ -103,11 +103,15 @@ namespace sable::mpm
 
     /// Count the friction walls' heat in MUSL's remapped pass
     /// (count_heat_on_remapped()) instead of at the corrected velocities;
-    /// see MultiBodyContact::count_heat_at_remapped_velocities().
+    /// see MultiBodyContact::count_heat_at_remapped_velocities(). Without
+    /// friction walls there is nothing to count (the other walls make no
+    /// heat) and nothing is kept.
     void
     count_heat_at_remapped_velocities(const bool remapped)
     {
-      heat_at_remap = remapped;
+      heat_at_remap = false;
+      for (const auto &[id, wall] : parameters)
+        heat_at_remap = heat_at_remap || (remapped && wall.type == BoundaryType::friction);
     }
 
     /// With count_heat_at_remapped_velocities(): before apply_to_remapped(),

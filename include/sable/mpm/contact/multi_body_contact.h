@@ -180,12 +180,10 @@ namespace sable::mpm
      * nodes (USL).
      */
     void
-    count_heat_at_remapped_velocities(const bool remapped,
-                                      BoundaryConditions<dim> &boundary_conditions)
+    count_heat_at_remapped_velocities(const bool remapped)
     {
       heat_at_remap = remapped;
       model.count_heat_at_nodes(!remapped);
-      boundary_conditions.count_heat_at_remapped_velocities(remapped);
     }
 
     /// The contact kernel, with its running sums (heat, pair forces).
@@ -219,9 +217,9 @@ namespace sable::mpm
     /// walls' tangential change in the momentum update), v the remapped
     /// velocity; summed chunk by chunk, the same for any number of threads.
     void
-    count_heat_at_remapped_velocities(BoundaryConditions<dim> &boundary_conditions,
-                                      const double             time_step,
-                                      const unsigned int       n_owned_nodes);
+    count_heat_on_remapped(BoundaryConditions<dim> &boundary_conditions,
+                           const double             time_step,
+                           const unsigned int       n_owned_nodes);
 
     bool heat_at_remap = false;
 
