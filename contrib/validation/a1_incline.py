@@ -108,7 +108,7 @@ def errors(rows, a):
 
 def order(hs, es):
     """Least-squares slope of log(error) against log(h)."""
-    if any(e <= 0 for e in es):
+    if any(e <= 0 for e in es) or len(set(hs)) < 2:
         return float("nan")
     lx = [math.log(h) for h in hs]
     ly = [math.log(e) for e in es]

@@ -4,23 +4,23 @@ Figs. 2-4) at 8 cells per diameter (cell 0.25 R), 0.5 s, one slipping and one
 rolling case, against the rigid-disk solution from rest
     x - x0 = 1/2 a t^2,  a = g (sin(theta) - mu cos(theta))  if tan(theta) > 3 mu,
                          a = 2/3 g sin(theta)                 otherwise.
-The scenes are those of prm/a1_mu03_theta60.prm and prm/a1_mu09_theta60.prm.
+The scenes are those of prm/a1_mu03_theta60.prm and prm/a1_mu09_theta60.prm
+(disk seeded conforming, 'surface position' wall contact).
 
 Tolerances come from runs of exactly these scenes (measured at 0.5 s; the
 full runs to 1 s are in doc/validation/a1.md):
-- slipping (theta = pi/3, mu = 0.3): x error -0.13% of the rigid displacement,
-  v error -0.16%, largest |x error| over time 0.0012 m (with the papers'
-  'approach' wall rule: +0.59%, +0.24%, 0.0051 m). Tolerances: 2% on x and v,
-  0.015 m on the largest x error. A friction coefficient off by 10% changes
-  a by 2.1%, frictionless sliding by +21%. The disk's spin omega R / v is
-  printed only (0.14 at 0.5 s, rigid 0.42: the contact patch still resists
-  the friction torque at this resolution).
-- rolling (theta = pi/3, mu = 0.9): the deformable disk lags; x error -5.8%,
-  v error -7.2%, omega R / v = 0.89 (with 'approach': -18.4%, -6.6%, 0.62).
-  Tolerances: x error in [-30%, +10%], |v error| <= 40%, omega R / v >= 0.45.
-  A disk sliding without friction would be at x +50%, v +50%; one sliding as
-  a Coulomb block with mu = 0.9 (no rolling) at x -28% with omega = 0; one
-  sticking at -100%."""
+- slipping (theta = pi/3, mu = 0.3): x error +0.38% of the rigid
+  displacement, v error +0.06%, largest |x error| over time 0.0033 m.
+  Tolerances: 2% on x and v, 0.015 m on the largest x error. A friction
+  coefficient off by 10% changes a by 2.1%, frictionless sliding by +21%.
+  The disk's spin omega R / v is printed only (0.39 at 0.5 s, rigid 0.42).
+- rolling (theta = pi/3, mu = 0.9): x error -0.4%, v error -3.5%,
+  omega R / v = 1.03. Tolerances: x within 3%, v within 8% (the deformable
+  disk's speed swings by a few per cent at this resolution), omega R / v
+  within 15% of 1. Seeded on the lattice the disk gives -1.6% and -0.6%
+  but rises 1.6 cm off the wall (2.3 mm conforming), hopping over the steps
+  of its staircase surface. One sliding without friction would be at x +50%, one sliding as a Coulomb block with
+  mu = 0.9 (no rolling) at x -28% with omega = 0; one sticking at -100%."""
 import math
 import os
 import sys
@@ -43,9 +43,10 @@ def scene(name, theta, mu):
         "Grid/Subdivisions": f"{round(6 / h)}, {round(1.5 / h)}",
         "Boundary conditions/Types": "1: slip, 2: friction",
         "Boundary conditions/Friction coefficients": f"2: {mu}",
+        "Boundary conditions/Friction wall contact": "surface position",
         "Solver/Update scheme": "MUSL",
     }, [{"Shape": "disk", "Center": f"1.0, {R}", "Radius": R,
-         "Particles per cell direction": 3, "Material": "linear elastic",
+         "Particles per cell direction": 3, "Seeding": "conforming", "Material": "linear elastic",
          "Density": 3000, "Bulk modulus": 10e6, "Shear modulus": 2.5e6,
          "Lithostatic initial stress": "true"}])[2]
 
@@ -87,8 +88,8 @@ a = 2.0 / 3.0 * G * math.sin(theta)
 rows = scene("roll", theta, mu)
 check("rolling run reaches the end time", abs(rows[-1]["time"] - END) < 1e-12)
 ex, ev, ex_max = errors(rows, a)
-check("rolling: x error at the end in [-30%, +10%] of the rigid displacement", -0.30 <= ex <= 0.10, f"{ex:+.4f}")
-check("rolling: v error at the end within 40% of the rigid velocity", abs(ev) <= 0.40, f"{ev:+.4f}")
+check("rolling: x error at the end within 3% of the rigid displacement", abs(ex) <= 0.03, f"{ex:+.4f}")
+check("rolling: v error at the end within 8% of the rigid velocity", abs(ev) <= 0.08, f"{ev:+.4f}")
 ratio = rolling_ratio(rows)
-check("rolling: the disk rolls, omega R / v >= 0.45", ratio >= 0.45, f"{ratio:.4f} (rigid 1)")
+check("rolling: the disk rolls, omega R / v within 15% of 1", abs(ratio - 1) <= 0.15, f"{ratio:.4f} (rigid 1)")
 finish()

@@ -67,10 +67,45 @@ namespace sable::mpm
 
   template <int dim>
   double
-  BoundaryConditions<dim>::apply_one(const NodeConstraint &c,
-                                     double *              v,
-                                     const bool            remapped,
-                                     const double          held) const
+  BoundaryConditions<dim>::tangential_speed(const NodeConstraint &c, const double *v)
+  {
+    double square = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d != c.direction)
+        square += v[d] * v[d];
+    return std::sqrt(square);
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::apply_one_remapped(const NodeConstraint &c,
+                                              double *              v,
+                                              const double          slip) const
+  {
+    if (parameters.find(c.id)->second.type != BoundaryType::friction)
+      {
+        apply_one(c, v);
+        return;
+      }
+    if (slip < 0.)
+      return;
+    // The node's points already carry the friction of the momentum update:
+    // taking the same fraction of the remapped tangential velocity again
+    // would move them slower than their velocities (a sliding block then
+    // rang and gained energy), and re-deciding contact here pumped energy
+    // into a block at rest. So the wall keeps what it decided: no normal
+    // velocity, and no more slip than it left (none where it held).
+    v[c.direction]      = 0.;
+    const double speed = tangential_speed(c, v);
+    if (speed > slip)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (d != c.direction)
+          v[d] *= slip / speed;
+  }
+
+  template <int dim>
+  double
+  BoundaryConditions<dim>::apply_one(const NodeConstraint &c, double *v) const
   {
     const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
     switch (wall.type)
@@ -88,17 +123,6 @@ namespace sable::mpm
           return -1.;
         case BoundaryType::friction:
           {
-            if (remapped)
-              {
-                if (held >= 0.)
-                  {
-                    for (unsigned int d = 0; d < dim; ++d)
-                      if (d != c.direction)
-                        v[d] -= held * v[d];
-                    v[c.direction] = 0.;
-                  }
-                return held;
-              }
             // SPEC step 6 with the wall (at rest) as the other body: act
             // only while the node approaches the wall
             Tensor<1, dim> velocity, normal;
@@ -132,7 +156,7 @@ namespace sable::mpm
       before[d] = v[d];
     if (wall.type == BoundaryType::moving)
       wall_velocity = wall.velocity;
-    const double result = apply_one(c, v, false, -1.);
+    const double result = apply_one(c, v);
     Tensor<1, dim> change;
     for (unsigned int d = 0; d < dim; ++d)
       change[d] = v[d] - before[d];
@@ -155,6 +179,7 @@ namespace sable::mpm
   {
     double work = 0;
     in_contact.assign(constraints.size(), -1.);
+    slip_left.assign(constraints.size(), -1.);
     out_of_reach.assign(constraints.size(), false);
     last_heat.assign(constraints.size(), 0.);
     if (heat_at_remap)
@@ -179,6 +204,8 @@ namespace sable::mpm
           for (unsigned int d = 0; d < dim; ++d)
             before[d] = v[d];
         in_contact[i] = apply_one_counting(c, v, mass[c.node], last_heat[i]);
+        if (in_contact[i] >= 0.)
+          slip_left[i] = tangential_speed(c, v);
         if (heat_at_remap)
           {
             last_heat[i]                 = 0;
@@ -317,7 +344,7 @@ namespace sable::mpm
   {
     for (unsigned int i = 0; i < constraints.size(); ++i)
       if (mass[constraints[i].node] > 0.)
-        apply_one(constraints[i], &velocity[constraints[i].node * dim], true, in_contact[i]);
+        apply_one_remapped(constraints[i], &velocity[constraints[i].node * dim], slip_left[i]);
   }
 
   template <int dim>
@@ -341,22 +368,37 @@ namespace sable::mpm
           for (auto *r = begin; r != end; ++r)
             if (r->mass > 0.)
               {
+                double *const v = &r->new_velocity[0];
+                if (remapped)
+                  {
+                    const unsigned int axis = constraints[i].direction;
+                    apply_one_remapped(constraints[i],
+                                       v,
+                                       (r->wall_acted >> axis) & 1u ? r->wall_slip[axis] : -1.);
+                    continue;
+                  }
+                double held;
                 if (!counted)
-                  apply_one(constraints[i], &r->new_velocity[0], remapped, in_contact[i]);
+                  held = apply_one(constraints[i], v);
                 else if (heat_at_remap)
                   {
                     const Tensor<1, dim> before = r->new_velocity;
                     double               heat   = 0;
-                    const double         held =
-                      apply_one_counting(constraints[i], &r->new_velocity[0], r->mass, heat);
-                    r->wall_change +=
-                      friction_change(constraints[i], before, &r->new_velocity[0], held);
+                    held = apply_one_counting(constraints[i], v, r->mass, heat);
+                    r->wall_change += friction_change(constraints[i], before, v, held);
                   }
                 else
                   {
                     double heat = 0;
-                    apply_one_counting(constraints[i], &r->new_velocity[0], r->mass, heat);
+                    held = apply_one_counting(constraints[i], v, r->mass, heat);
                     frictional_heat += heat;
+                  }
+                // the record's own decision, as a node's
+                if (held >= 0.)
+                  {
+                    const unsigned int axis = constraints[i].direction;
+                    r->wall_slip[axis]      = tangential_speed(constraints[i], v);
+                    r->wall_acted |= 1u << axis;
                   }
               }
         }

@@ -131,8 +131,10 @@ namespace sable::mpm
   BardenhagenContact<dim>::compute_friction_scales(const MPI_Comm communicator)
   {
     // per pair: net normal impulse, friction impulse (chunk by chunk, so
-    // the sums do not depend on the threads)
-    std::map<std::pair<unsigned int, unsigned int>, std::pair<double, double>> totals;
+    // the sums do not depend on the threads; each pair's sum is formed in
+    // the same order whatever the order of the pairs)
+    std::unordered_map<std::pair<unsigned int, unsigned int>, std::pair<double, double>, PairHash>
+      totals;
     for (const ChunkSums &sums : chunk_sums)
       for (const PairImpulse &impulse : sums.pair_impulses)
         {
@@ -449,10 +451,8 @@ namespace sable::mpm
     // Overlapping, the part along the normal says how far.
     const double along      = between * normal;
     const double sideways   = (between - along * normal).norm();
-    const double separation = along > 0 ?
-                                std::hypot(along,
-                                           std::max(sideways - sideways_tolerance * std::sqrt(cell), 0.)) :
-                                along;
+    const double beyond     = sideways - sideways_tolerance * std::sqrt(cell);
+    const double separation = along > 0 && beyond > 0 ? std::hypot(along, beyond) : along;
     return separation - dt * std::max(closing, 0.) <= touching;
   }
 

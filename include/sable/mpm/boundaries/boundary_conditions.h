@@ -154,15 +154,24 @@ namespace sable::mpm
     bool
     out_of_reach_of(const NodeConstraint &c, const double *v, const double mass) const;
 
-    /// Apply constraint @p c to the velocity @p v. For friction walls,
-    /// returns the fraction of the tangential velocity removed (1: stick),
-    /// or -1 if the wall did not act; with @p remapped, @p held is that
-    /// fraction from the momentum update, applied again.
+    /// Apply constraint @p c to the velocity @p v after a momentum update.
+    /// For friction walls, returns the fraction of the tangential velocity
+    /// removed (1: stick), or -1 if the wall did not act.
     double
-    apply_one(const NodeConstraint &c,
-              double *              v,
-              const bool            remapped,
-              const double          held) const;
+    apply_one(const NodeConstraint &c, double *v) const;
+
+    /// Apply constraint @p c to the remapped velocity @p v (MUSL). A
+    /// friction wall acts only where it acted in the momentum update
+    /// (@p slip >= 0, the tangential speed it left there: zero where it
+    /// held the node), removing the normal velocity and any tangential
+    /// speed beyond @p slip; the other walls act as after the momentum
+    /// update.
+    void
+    apply_one_remapped(const NodeConstraint &c, double *v, const double slip) const;
+
+    /// The speed of @p v along the wall of @p c.
+    static double
+    tangential_speed(const NodeConstraint &c, const double *v);
 
     /// apply_one() after a momentum update, returning the energy it
     /// dissipated at a node of mass @p mass in @p dissipation.
@@ -177,6 +186,9 @@ namespace sable::mpm
     /// per constraint: fraction of tangential velocity a friction wall
     /// removed in the last apply(), -1 where it did not act
     std::vector<double> in_contact;
+    /// per constraint: the tangential speed a friction wall left in the
+    /// last apply(), -1 where it did not act
+    std::vector<double> slip_left;
     /// per constraint: excluded by the material check in the last apply()
     std::vector<bool> out_of_reach;
     /// per constraint: what it added to frictional_heat in the last apply()

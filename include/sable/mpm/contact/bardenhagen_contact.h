@@ -6,7 +6,9 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <map>
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace sable::mpm
@@ -202,8 +204,17 @@ namespace sable::mpm
     pair_index(const unsigned int a, const unsigned int b) const;
 
     std::vector<ChunkSums> chunk_sums;
+    /// a pair of body numbers as one 64-bit key
+    struct PairHash
+    {
+      std::size_t
+      operator()(const std::pair<unsigned int, unsigned int> &pair) const noexcept
+      {
+        return std::hash<std::uint64_t>()((std::uint64_t(pair.first) << 32) | pair.second);
+      }
+    };
     /// this pass's friction scale of the pairs whose friction is capped
-    std::map<std::pair<unsigned int, unsigned int>, double> friction_scale;
+    std::unordered_map<std::pair<unsigned int, unsigned int>, double, PairHash> friction_scale;
   };
 } // namespace sable::mpm
 

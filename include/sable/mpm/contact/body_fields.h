@@ -55,6 +55,12 @@ namespace sable::mpm
       /// the friction walls' tangential velocity change in the momentum
       /// update, for their heat at the remapped velocities
       Tensor<1, dim> wall_change;
+      /// per wall axis (the axis of the wall's normal): the tangential
+      /// speed a friction wall left in the momentum update (zero where it
+      /// held the record), for the remap pass; bit d of wall_acted says
+      /// whether the wall on axis d acted
+      Tensor<1, dim> wall_slip;
+      unsigned int   wall_acted;
     };
 
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
