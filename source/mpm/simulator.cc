@@ -975,10 +975,7 @@ namespace sable::mpm
         rebinned = !parallel && rebinning.moved_since_full_sort() < room &&
                    rebinning.rebin(*particle_handler, particle_cells, grid.periodicity(), room);
         if (!rebinned)
-          {
-            particle_handler->sort_particles_into_subdomains_and_cells();
-            reset_rebinning();
-          }
+          full_sort();
         if (contact && parallel)
           particle_handler->exchange_ghost_particles(true);
       }
@@ -1017,9 +1014,26 @@ namespace sable::mpm
     if (rebinning.moved_since_full_sort() == 0)
       return;
     TimerOutput::Scope scope(timer, "sort particles");
+    full_sort();
+    particle_cells_current = false;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::full_sort()
+  {
+    // on one rank the full sort is rare, and its copy of the particle data
+    // into container order sets the peak memory of a run: give back first
+    // what this step no longer needs and the next rebuilds (the velocity
+    // gradients and the list of cells with points, about 80 bytes a point
+    // in 2D); on several ranks every step sorts
+    if (!parallel)
+      {
+        std::vector<Tensor<2, dim>>().swap(velocity_gradients);
+        particle_cells.release();
+      }
     particle_handler->sort_particles_into_subdomains_and_cells();
     reset_rebinning();
-    particle_cells_current = false;
   }
 
   template <int dim>

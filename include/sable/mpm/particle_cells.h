@@ -105,6 +105,17 @@ namespace sable::mpm
     void
     update_reference_locations() const;
 
+    /// Give the list's memory back (rebuild() before the next use): the
+    /// full sort copies the particle data, and the list is stale after it.
+    void
+    release()
+    {
+      std::vector<Cell>().swap(cells);
+      std::vector<Colour>().swap(colours);
+      std::vector<unsigned int>().swap(slot);
+      n_owned_cells = 0;
+    }
+
     /// Locally owned cells with points: [0, n_owned()).
     unsigned int
     n_owned() const

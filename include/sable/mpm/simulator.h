@@ -239,6 +239,10 @@ namespace sable::mpm
     /// index), for output and checkpoints: see the definition.
     void
     put_particles_in_order();
+    /// deal.II's sort of all points into their cells, and
+    /// reset_rebinning().
+    void
+    full_sort();
     /// After a full sort: the rebinning starts counting again.
     void
     reset_rebinning();

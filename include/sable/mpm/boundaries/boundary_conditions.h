@@ -75,10 +75,11 @@ namespace sable::mpm
 
     /**
      * Apply the conditions to velocities remapped from the particles (MUSL's
-     * second grid pass). A friction wall holds exactly the nodes it held
-     * in apply(), removing the normal velocity and the same fraction of the
-     * tangential velocity (a sticking node sticks), so that the strain
-     * rate sees the contact state the particles were given.
+     * second grid pass). A friction wall acts exactly at the nodes it
+     * acted on in apply(), removing the normal velocity and any tangential
+     * speed beyond the slip it left there (a node it held stays held), so
+     * that the strain rate sees the contact state the particles were given
+     * without taking their friction a second time.
      */
     void
     apply_to_remapped(std::vector<double> &velocity,
