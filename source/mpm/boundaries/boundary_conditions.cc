@@ -95,7 +95,7 @@ namespace sable::mpm
     // rang and gained energy), and re-deciding contact here pumped energy
     // into a block at rest. So the wall keeps what it decided: no normal
     // velocity, and no more slip than it left (none where it held).
-    v[c.direction]      = 0.;
+    v[c.direction]     = 0.;
     const double speed = tangential_speed(c, v);
     if (speed > slip)
       for (unsigned int d = 0; d < dim; ++d)
