@@ -178,7 +178,6 @@ namespace sable::mpm
                                  const unsigned int         n_owned_nodes)
   {
     double work = 0;
-    in_contact.assign(constraints.size(), -1.);
     slip_left.assign(constraints.size(), -1.);
     out_of_reach.assign(constraints.size(), false);
     last_heat.assign(constraints.size(), 0.);
@@ -203,13 +202,13 @@ namespace sable::mpm
         if (heat_at_remap)
           for (unsigned int d = 0; d < dim; ++d)
             before[d] = v[d];
-        in_contact[i] = apply_one_counting(c, v, mass[c.node], last_heat[i]);
-        if (in_contact[i] >= 0.)
+        const double held = apply_one_counting(c, v, mass[c.node], last_heat[i]);
+        if (held >= 0.)
           slip_left[i] = tangential_speed(c, v);
         if (heat_at_remap)
           {
             last_heat[i]                 = 0;
-            const Tensor<1, dim> change = friction_change(c, before, v, in_contact[i]);
+            const Tensor<1, dim> change = friction_change(c, before, v, held);
             for (unsigned int d = 0; d < dim; ++d)
               tangential_change[i * dim + d] = change[d];
           }

@@ -184,9 +184,6 @@ namespace sable::mpm
 
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
     std::vector<NodeConstraint>                            constraints;
-    /// per constraint: fraction of tangential velocity a friction wall
-    /// removed in the last apply(), -1 where it did not act
-    std::vector<double> in_contact;
     /// per constraint: the tangential speed a friction wall left in the
     /// last apply(), -1 where it did not act
     std::vector<double> slip_left;

@@ -60,7 +60,7 @@ namespace sable::mpm
       /// held the record), for the remap pass; bit d of wall_acted says
       /// whether the wall on axis d acted
       Tensor<1, dim> wall_slip;
-      unsigned int   wall_acted;
+      unsigned int   wall_acted = 0;
     };
 
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
