@@ -53,77 +53,162 @@ namespace sable::mpm
                                  const bool                         record_forces,
                                  const MPI_Comm                     communicator)
   {
-    // only the 2001 release pulls: then the friction of a pair is capped
-    // by its net normal impulse, which a first pass measures
+    // Each node changes only its own records, so the chunks of nodes run in
+    // parallel; what each node adds to the sums is kept and added node by
+    // node at the end, the same way for any number of threads.
+    // Only the 2001 release pulls: then the friction of a pair is capped by
+    // its net normal impulse, which the first pass measures while it
+    // corrects uncapped; the nodes where a capped pair's friction acted are
+    // then corrected again from the velocities they had, which gives what a
+    // measuring pass followed by a correcting pass would.
     friction_scale.clear();
+    const unsigned int n_chunks =
+      (fields.get_contact_nodes().size() + chunk_size - 1) / chunk_size;
+    chunk_results.resize(n_chunks);
+    const auto for_each_chunk = [&](const auto &work) {
+      parallel::apply_to_subranges(
+        0u,
+        n_chunks,
+        [&](const unsigned int first_chunk, const unsigned int last_chunk) {
+          Scratch scratch;
+          for (unsigned int chunk = first_chunk; chunk < last_chunk; ++chunk)
+            work(chunk, scratch);
+        },
+        1);
+    };
+    for_each_chunk([&](const unsigned int chunk, Scratch &scratch) {
+      apply_to_chunk(fields, spacing, dt, n_owned_nodes, record_forces, use_traction, chunk, scratch);
+    });
     if (use_traction)
       {
-        for_each_node(fields, spacing, dt, n_owned_nodes, record_forces, true);
         compute_friction_scales(communicator);
+        if (!friction_scale.empty())
+          for_each_chunk([&](const unsigned int chunk, Scratch &scratch) {
+            redo_capped_nodes(fields, spacing, dt, n_owned_nodes, record_forces, chunk, scratch);
+          });
       }
-    for_each_node(fields, spacing, dt, n_owned_nodes, record_forces, false);
 
     if (record_forces)
       for (auto &f : pair_forces)
         f = 0;
-    for (const ChunkSums &sums : chunk_sums)
+    const unsigned int n_reported = pair_forces.size();
+    for (const ChunkResults &results : chunk_results)
+      for (unsigned int i = 0; i < results.node_totals.size(); ++i)
+        {
+          frictional_heat += results.node_totals[i].frictional_heat;
+          momentum_defect += results.node_totals[i].momentum_defect;
+          momentum_correction += results.node_totals[i].momentum_correction;
+          if (record_forces)
+            for (unsigned int p = 0; p < n_reported; ++p)
+              pair_forces[p] += results.node_pair_forces[i * n_reported + p];
+        }
+  }
+
+  template <int dim>
+  void
+  BardenhagenContact<dim>::apply_to_chunk(BodyFields<dim> &                  fields,
+                                          const std::vector<Tensor<1, dim>> &spacing,
+                                          const double                       dt,
+                                          const unsigned int                 n_owned_nodes,
+                                          const bool                         record_forces,
+                                          const bool                         measure,
+                                          const unsigned int                 chunk,
+                                          Scratch &                          scratch)
+  {
+    const std::vector<unsigned int> &nodes   = fields.get_contact_nodes();
+    const unsigned int               first   = chunk * chunk_size;
+    const unsigned int               n_nodes =
+      std::min<unsigned int>(first + chunk_size, nodes.size()) - first;
+    ChunkResults &results = chunk_results[chunk];
+    results.node_totals.resize(n_nodes);
+    results.node_pair_forces.resize(n_nodes * pair_forces.size());
+    results.pair_impulses.clear();
+    if (measure)
       {
-        frictional_heat += sums.frictional_heat;
-        momentum_defect += sums.momentum_defect;
-        momentum_correction += sums.momentum_correction;
-        if (record_forces)
-          for (unsigned int i = 0; i < pair_forces.size(); ++i)
-            pair_forces[i] += sums.pair_forces[i];
+        results.saved_velocities.clear();
+        results.saved_offsets.resize(n_nodes);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          {
+            results.saved_offsets[i] = results.saved_velocities.size();
+            const auto [begin, end]  = fields.node_records(nodes[first + i]);
+            for (auto r = begin; r != end; ++r)
+              results.saved_velocities.push_back(r->new_velocity);
+          }
+      }
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      apply_to_node(fields, spacing, dt, n_owned_nodes, record_forces, measure, chunk, i, scratch);
+  }
+
+  template <int dim>
+  void
+  BardenhagenContact<dim>::apply_to_node(BodyFields<dim> &                  fields,
+                                         const std::vector<Tensor<1, dim>> &spacing,
+                                         const double                       dt,
+                                         const unsigned int                 n_owned_nodes,
+                                         const bool                         record_forces,
+                                         const bool                         measure,
+                                         const unsigned int                 chunk,
+                                         const unsigned int                 index,
+                                         Scratch &                          scratch)
+  {
+    const unsigned int node   = fields.get_contact_nodes()[chunk * chunk_size + index];
+    NodeSums &         sums   = scratch.sums;
+    sums.frictional_heat = sums.momentum_defect = sums.momentum_correction = 0;
+    sums.pair_forces.assign(pair_forces.size(), Tensor<1, dim>());
+    sums.pair_impulses.clear();
+    const auto [begin, end] = fields.node_records(node);
+    apply_at_node(begin,
+                  end,
+                  spacing[node],
+                  dt,
+                  node < n_owned_nodes,
+                  record_forces,
+                  measure,
+                  scratch,
+                  sums);
+
+    ChunkResults &results      = chunk_results[chunk];
+    results.node_totals[index] = {sums.frictional_heat,
+                                  sums.momentum_defect,
+                                  sums.momentum_correction};
+    std::copy(sums.pair_forces.begin(),
+              sums.pair_forces.end(),
+              results.node_pair_forces.begin() + index * pair_forces.size());
+    for (PairImpulse impulse : sums.pair_impulses)
+      {
+        impulse.node = index;
+        results.pair_impulses.push_back(impulse);
       }
   }
 
   template <int dim>
   void
-  BardenhagenContact<dim>::for_each_node(BodyFields<dim> &                  fields,
-                                         const std::vector<Tensor<1, dim>> &spacing,
-                                         const double                       dt,
-                                         const unsigned int                 n_owned_nodes,
-                                         const bool                         record_forces,
-                                         const bool                         measure)
+  BardenhagenContact<dim>::redo_capped_nodes(BodyFields<dim> &                  fields,
+                                             const std::vector<Tensor<1, dim>> &spacing,
+                                             const double                       dt,
+                                             const unsigned int                 n_owned_nodes,
+                                             const bool                         record_forces,
+                                             const unsigned int                 chunk,
+                                             Scratch &                          scratch)
   {
-    // Each node changes only its own records, so the nodes run in parallel;
-    // the sums over nodes are formed per fixed chunk of nodes and then added
-    // chunk by chunk, the same way for any number of threads.
-    const std::vector<unsigned int> &nodes    = fields.get_contact_nodes();
-    const unsigned int               n_chunks = (nodes.size() + chunk_size - 1) / chunk_size;
-    chunk_sums.resize(n_chunks);
-    for (ChunkSums &sums : chunk_sums)
+    // the impulses come node by node
+    ChunkResults &results = chunk_results[chunk];
+    auto &        redo    = scratch.nodes_to_redo;
+    redo.clear();
+    for (const PairImpulse &impulse : results.pair_impulses)
+      if (impulse.friction > 0 && (redo.empty() || redo.back() != impulse.node) &&
+          friction_scale.count(impulse.pair) > 0)
+        redo.push_back(impulse.node);
+
+    const std::vector<unsigned int> &nodes = fields.get_contact_nodes();
+    for (const unsigned int index : redo)
       {
-        sums.frictional_heat = sums.momentum_defect = sums.momentum_correction = 0;
-        sums.pair_forces.assign(pair_forces.size(), Tensor<1, dim>());
-        sums.pair_impulses.clear();
+        auto saved = results.saved_velocities.cbegin() + results.saved_offsets[index];
+        const auto [begin, end] = fields.node_records(nodes[chunk * chunk_size + index]);
+        for (auto r = begin; r != end; ++r)
+          r->new_velocity = *saved++;
+        apply_to_node(fields, spacing, dt, n_owned_nodes, record_forces, false, chunk, index, scratch);
       }
-    parallel::apply_to_subranges(
-      0u,
-      n_chunks,
-      [&](const unsigned int first_chunk, const unsigned int last_chunk) {
-        Scratch scratch;
-        for (unsigned int chunk = first_chunk; chunk < last_chunk; ++chunk)
-          {
-            const unsigned int last =
-              std::min<unsigned int>((chunk + 1) * chunk_size, nodes.size());
-            for (unsigned int i = chunk * chunk_size; i < last; ++i)
-              {
-                const unsigned int node = nodes[i];
-                const auto [begin, end] = fields.node_records(node);
-                apply_at_node(begin,
-                              end,
-                              spacing[node],
-                              dt,
-                              node < n_owned_nodes,
-                              record_forces,
-                              measure,
-                              scratch,
-                              chunk_sums[chunk]);
-              }
-          }
-      },
-      1);
   }
 
   template <int dim>
@@ -135,13 +220,14 @@ namespace sable::mpm
     // the same order whatever the order of the pairs)
     std::unordered_map<std::pair<unsigned int, unsigned int>, std::pair<double, double>, PairHash>
       totals;
-    for (const ChunkSums &sums : chunk_sums)
-      for (const PairImpulse &impulse : sums.pair_impulses)
-        {
-          auto &total = totals[impulse.pair];
-          total.first += impulse.normal;
-          total.second += impulse.friction;
-        }
+    for (const ChunkResults &results : chunk_results)
+      for (const PairImpulse &impulse : results.pair_impulses)
+        if (impulse.owned)
+          {
+            auto &total = totals[impulse.pair];
+            total.first += impulse.normal;
+            total.second += impulse.friction;
+          }
     if (Utilities::MPI::n_mpi_processes(communicator) > 1)
       {
         // every rank's pairs to every rank, added in rank order
@@ -178,7 +264,7 @@ namespace sable::mpm
                                          const bool                        record_forces,
                                          const bool                        measure,
                                          Scratch &                         scratch,
-                                         ChunkSums &                       sums) const
+                                         NodeSums &                        sums) const
   {
     using Record = typename BodyFields<dim>::Record;
     const unsigned int n = end - begin;
@@ -308,12 +394,8 @@ namespace sable::mpm
             const std::pair<unsigned int, unsigned int> pair(
               std::min(r.body, begin[other].body), std::max(r.body, begin[other].body));
             if (measure)
-              {
-                if (owned)
-                  sums.pair_impulses.push_back(
-                    {pair, r.mass * dv_n, r.mass * correction.tangential_change});
-                continue;
-              }
+              sums.pair_impulses.push_back(
+                {pair, r.mass * dv_n, r.mass * correction.tangential_change, owned});
             const auto capped = correction.tangential_change > 0 ? friction_scale.find(pair) :
                                                                    friction_scale.end();
             if (capped != friction_scale.end())
@@ -325,8 +407,6 @@ namespace sable::mpm
                 tangential_change[a] *= capped->second;
               }
           }
-        if (measure)
-          continue;
         // the cell-collapse rate of paper 002 section 2.2
         const double mass_ratio = std::max(r.mass / std::max(total_mass - r.mass,
                                                              std::numeric_limits<double>::min()),
@@ -335,8 +415,6 @@ namespace sable::mpm
           rate = std::max(rate, mass_ratio * std::abs(change[a][d]) / spacing[d]);
       }
 
-    if (measure)
-      return;
     double scale = 1;
     if (parameters.impulse_scaling > 0 && rate * dt > parameters.impulse_scaling)
       scale = parameters.impulse_scaling / (rate * dt);
@@ -466,7 +544,7 @@ namespace sable::mpm
                                                   const bool                        record_forces,
                                                   const bool                        measure,
                                                   Scratch &                         scratch,
-                                                  ChunkSums &                       sums) const
+                                                  NodeSums &                        sums) const
   {
     using Record = typename BodyFields<dim>::Record;
     const unsigned int n        = end - begin;
@@ -523,10 +601,9 @@ namespace sable::mpm
           if (use_traction && std::isfinite(mu))
             {
               const std::pair<unsigned int, unsigned int> pair(ra.body, rb.body);
-              if (measure && owned)
-                sums.pair_impulses.push_back({pair, ra.mass * dv_n, ra.mass * tau});
-              const auto capped =
-                !measure && tau > 0 ? friction_scale.find(pair) : friction_scale.end();
+              if (measure)
+                sums.pair_impulses.push_back({pair, ra.mass * dv_n, ra.mass * tau, owned});
+              const auto capped = tau > 0 ? friction_scale.find(pair) : friction_scale.end();
               if (capped != friction_scale.end())
                 {
                   const Tensor<1, dim> normal_part = -dv_n * common;
@@ -550,9 +627,6 @@ namespace sable::mpm
           if (tau < correction.tangential_speed)
             slipping[a] = slipping[b] = true;
         }
-    if (measure)
-      return;
-
     // one impulse scale for the node (paper 002 section 2.2), so that
     // momentum stays kept
     double rate = 0;

@@ -33,8 +33,10 @@ namespace sable::mpm
    *   sticks; with the 2001 release, which may hold separating nodes
    *   together with pulling normal impulses, the friction of each pair of
    *   bodies is also capped by mu times the pair's net normal impulse over
-   *   all its nodes (a first pass measures both), so that the interface
-   *   obeys Coulomb as a whole;
+   *   all its nodes, so that the interface obeys Coulomb as a whole: one
+   *   pass corrects every node uncapped and measures both, then the chunks
+   *   of nodes where a capped pair's friction acted are corrected again
+   *   from their saved velocities;
    * - impulse scaling (paper 002 eq. 22 with the erratum: the factor is
    *   min(gamma/(rate dt), 1)), one factor per node so momentum is kept.
    */
@@ -94,16 +96,40 @@ namespace sable::mpm
       std::pair<unsigned int, unsigned int> pair;
       double                                normal;
       double                                friction;
+      /// whether the node is this rank's: only those count in the pair's
+      /// totals, but any node where a capped pair's friction acted is
+      /// corrected again
+      bool owned;
+      /// the node's index within its chunk
+      unsigned int node = 0;
     };
 
-    /// What one chunk of contact nodes adds to the running sums above.
-    struct ChunkSums
+    /// What one node adds to the running sums above, and its pair impulses.
+    struct NodeSums
     {
       double                      frictional_heat     = 0;
       double                      momentum_defect     = 0;
       double                      momentum_correction = 0;
       std::vector<Tensor<1, dim>> pair_forces;
       std::vector<PairImpulse>    pair_impulses;
+    };
+
+    /// One chunk of contact nodes: what each node adds to the sums, added
+    /// node by node once every node is final, and the pair impulses.
+    struct ChunkResults
+    {
+      struct Totals
+      {
+        double frictional_heat, momentum_defect, momentum_correction;
+      };
+      std::vector<Totals>         node_totals;
+      /// per node, the reported pairs' forces
+      std::vector<Tensor<1, dim>> node_pair_forces;
+      std::vector<PairImpulse>    pair_impulses;
+      /// the records' velocities before the uncapped pass, node by node,
+      /// and where each node's begin
+      std::vector<Tensor<1, dim>> saved_velocities;
+      std::vector<unsigned int>   saved_offsets;
     };
 
     /// Per-body scratch of one node (nodes rarely hold more than a few
@@ -122,14 +148,17 @@ namespace sable::mpm
         double         tau, slip_speed, heat_mass;
       };
       std::vector<PairChange> pairs;
+      NodeSums                sums;
+      /// the nodes of a chunk to correct again
+      std::vector<unsigned int> nodes_to_redo;
     };
 
     /// Contact nodes per chunk of the threaded loop; fixed, so that the
     /// sums, added chunk by chunk, do not depend on the number of threads.
     static constexpr unsigned int chunk_size = 256;
 
-    /// Contact at one node: changes only that node's records; or, with
-    /// @p measure, only adds the node's pair impulses to @p sums.
+    /// Contact at one node: changes only that node's records; with
+    /// @p measure, also adds the node's pair impulses to @p sums.
     void
     apply_at_node(typename BodyFields<dim>::Record *begin,
                   typename BodyFields<dim>::Record *end,
@@ -139,7 +168,7 @@ namespace sable::mpm
                   const bool                        record_forces,
                   const bool                        measure,
                   Scratch &                         scratch,
-                  ChunkSums &                       sums) const;
+                  NodeSums &                        sums) const;
 
     /// apply_at_node() at a node of three or more bodies with
     /// 'Nodes with three or more bodies = pairwise'.
@@ -152,7 +181,7 @@ namespace sable::mpm
                            const bool                        record_forces,
                            const bool                        measure,
                            Scratch &                         scratch,
-                           ChunkSums &                       sums) const;
+                           NodeSums &                        sums) const;
 
     /// The common unit normal (out of @p a) of two bodies at a node, from
     /// their unit mass-gradient directions @p normal_a and @p normal_b, as
@@ -174,14 +203,41 @@ namespace sable::mpm
                   const Tensor<1, dim> &                  spacing,
                   const double                            dt) const;
 
-    /// Run apply_at_node() over all contact nodes, chunk by chunk.
+    /// Run apply_at_node() over the contact nodes of chunk @p chunk; with
+    /// @p measure, saving the records' velocities first.
     void
-    for_each_node(BodyFields<dim> &                  fields,
+    apply_to_chunk(BodyFields<dim> &                  fields,
+                   const std::vector<Tensor<1, dim>> &spacing,
+                   const double                       dt,
+                   const unsigned int                 n_owned_nodes,
+                   const bool                         record_forces,
+                   const bool                         measure,
+                   const unsigned int                 chunk,
+                   Scratch &                          scratch);
+
+    /// Run apply_at_node() at node @p index of chunk @p chunk, storing
+    /// what it adds to the sums in the chunk's results.
+    void
+    apply_to_node(BodyFields<dim> &                  fields,
                   const std::vector<Tensor<1, dim>> &spacing,
                   const double                       dt,
                   const unsigned int                 n_owned_nodes,
                   const bool                         record_forces,
-                  const bool                         measure);
+                  const bool                         measure,
+                  const unsigned int                 chunk,
+                  const unsigned int                 index,
+                  Scratch &                          scratch);
+
+    /// Correct again, from their saved velocities, the nodes of chunk
+    /// @p chunk where the friction of a capped pair acted.
+    void
+    redo_capped_nodes(BodyFields<dim> &                  fields,
+                      const std::vector<Tensor<1, dim>> &spacing,
+                      const double                       dt,
+                      const unsigned int                 n_owned_nodes,
+                      const bool                         record_forces,
+                      const unsigned int                 chunk,
+                      Scratch &                          scratch);
 
     /// The friction cap per pair from the measured impulses, summed over
     /// all ranks: mu N_net / F_t where the friction exceeds mu N_net.
@@ -203,7 +259,7 @@ namespace sable::mpm
     unsigned int
     pair_index(const unsigned int a, const unsigned int b) const;
 
-    std::vector<ChunkSums> chunk_sums;
+    std::vector<ChunkResults> chunk_results;
     /// a pair of body numbers as one 64-bit key
     struct PairHash
     {
