@@ -15,6 +15,7 @@ namespace sable::mpm
       if (c.active_cell_index < slot.size())
         slot[c.active_cell_index] = numbers::invalid_unsigned_int;
     cells.clear();
+    ++n_versions;
 
     // one jump per non-empty cell: a cell's range ends where the next
     // non-empty cell's particles begin

@@ -114,6 +114,16 @@ namespace sable::mpm
       std::vector<Colour>().swap(colours);
       std::vector<unsigned int>().swap(slot);
       n_owned_cells = 0;
+      ++n_versions;
+    }
+
+    /// How many times the list was rebuilt or released: what others keep
+    /// per cell of the list (the bodies of its points) stays valid while
+    /// this does not change.
+    unsigned long long
+    version() const
+    {
+      return n_versions;
     }
 
     /// Locally owned cells with points: [0, n_owned()).
@@ -157,8 +167,9 @@ namespace sable::mpm
     }
 
   private:
-    std::vector<Cell> cells;
-    unsigned int      n_owned_cells = 0;
+    std::vector<Cell>  cells;
+    unsigned int       n_owned_cells = 0;
+    unsigned long long n_versions    = 0;
 
     struct Colour
     {

@@ -24,14 +24,34 @@ namespace sable::mpm
                                             const ParticleLayout<dim> &layout)
   {
     fields.clear(grid.n_relevant_nodes());
+    const bool gimp = grid.get_shape_functions() == ShapeFunctions::gimp;
+    // with linear shape functions, the bodies of each cell's points, kept
+    // until the cells' points change (a sort or a rebinning)
+    if (!gimp && cells.version() != cell_bodies_version)
+      {
+        cell_bodies.clear();
+        cell_bodies_start.assign(1, 0);
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          {
+            const auto first = cell_bodies.end() - cell_bodies.begin();
+            for (const auto &particle : cells[c].particles)
+              {
+                const unsigned int body =
+                  static_cast<unsigned int>(particle.get_properties()[layout.body]);
+                if (std::find(cell_bodies.begin() + first, cell_bodies.end(), body) ==
+                    cell_bodies.end())
+                  cell_bodies.push_back(body);
+              }
+            cell_bodies_start.push_back(cell_bodies.size());
+          }
+        cell_bodies_version = cells.version();
+      }
     // only the cells with points, colour by colour: blocks of one colour
     // share no node, so their threads mark different nodes; the extra
     // (node, body) pairs are collected per range of cells and sorted by
     // allocate(), so the table does not depend on the threads
     std::mutex mutex;
-    const bool gimp = grid.get_shape_functions() == ShapeFunctions::gimp;
     cells.for_each_coloured_range([&](const unsigned int *begin, const unsigned int *end) {
-      std::vector<unsigned int>                          bodies;
       std::vector<std::pair<unsigned int, unsigned int>> extra;
       // GIMP: per body of the cell, the box of nodes its points reach (the
       // 4^dim nodes a cell's points may reach would make most nodes near a
@@ -86,18 +106,10 @@ namespace sable::mpm
                 }
               continue;
             }
-          bodies.clear();
-          for (const auto &particle : cell.particles)
-            {
-              const unsigned int body =
-                static_cast<unsigned int>(particle.get_properties()[layout.body]);
-              if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
-                bodies.push_back(body);
-            }
           const auto [nodes, n_nodes] = grid.cell_nodes(*cell.data);
           for (unsigned int k = 0; k < n_nodes; ++k)
-            for (const unsigned int body : bodies)
-              fields.add(nodes[k], body, extra);
+            for (unsigned int b = cell_bodies_start[*c]; b < cell_bodies_start[*c + 1]; ++b)
+              fields.add(nodes[k], cell_bodies[b], extra);
         }
       if (!extra.empty())
         {

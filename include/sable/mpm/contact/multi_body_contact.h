@@ -14,6 +14,9 @@
 #include <sable/mpm/particle_cells.h>
 #include <sable/mpm/particle_layout.h>
 
+#include <limits>
+#include <vector>
+
 namespace sable::mpm
 {
   /**
@@ -232,6 +235,15 @@ namespace sable::mpm
     const bool              with_position;
     BodyFields<dim>         fields;
     BardenhagenContact<dim> model;
+
+    /// The bodies of each cell's points (linear shape functions), in the
+    /// order of the ParticleCells list: cell i's are
+    /// [cell_bodies_start[i], cell_bodies_start[i + 1]); valid while the
+    /// list's version is cell_bodies_version (points do not change body,
+    /// and only a rebuilt list has points change cells).
+    std::vector<unsigned int> cell_bodies;
+    std::vector<unsigned int> cell_bodies_start;
+    unsigned long long        cell_bodies_version = std::numeric_limits<unsigned long long>::max();
   };
 } // namespace sable::mpm
 
