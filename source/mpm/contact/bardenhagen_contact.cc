@@ -76,15 +76,16 @@ namespace sable::mpm
         },
         1);
     };
+    const Pass pass{fields, spacing, dt, n_owned_nodes, record_forces};
     for_each_chunk([&](const unsigned int chunk, Scratch &scratch) {
-      apply_to_chunk(fields, spacing, dt, n_owned_nodes, record_forces, use_traction, chunk, scratch);
+      apply_to_chunk(pass, use_traction, chunk, scratch);
     });
     if (use_traction)
       {
         compute_friction_scales(communicator);
         if (!friction_scale.empty())
           for_each_chunk([&](const unsigned int chunk, Scratch &scratch) {
-            redo_capped_nodes(fields, spacing, dt, n_owned_nodes, record_forces, chunk, scratch);
+            redo_capped_nodes(pass, chunk, scratch);
           });
       }
 
@@ -106,16 +107,12 @@ namespace sable::mpm
 
   template <int dim>
   void
-  BardenhagenContact<dim>::apply_to_chunk(BodyFields<dim> &                  fields,
-                                          const std::vector<Tensor<1, dim>> &spacing,
-                                          const double                       dt,
-                                          const unsigned int                 n_owned_nodes,
-                                          const bool                         record_forces,
-                                          const bool                         measure,
-                                          const unsigned int                 chunk,
-                                          Scratch &                          scratch)
+  BardenhagenContact<dim>::apply_to_chunk(const Pass &       pass,
+                                          const bool         measure,
+                                          const unsigned int chunk,
+                                          Scratch &          scratch)
   {
-    const std::vector<unsigned int> &nodes   = fields.get_contact_nodes();
+    const std::vector<unsigned int> &nodes   = pass.fields.get_contact_nodes();
     const unsigned int               first   = chunk * chunk_size;
     const unsigned int               n_nodes =
       std::min<unsigned int>(first + chunk_size, nodes.size()) - first;
@@ -130,39 +127,35 @@ namespace sable::mpm
         for (unsigned int i = 0; i < n_nodes; ++i)
           {
             results.saved_offsets[i] = results.saved_velocities.size();
-            const auto [begin, end]  = fields.node_records(nodes[first + i]);
+            const auto [begin, end]  = pass.fields.node_records(nodes[first + i]);
             for (auto r = begin; r != end; ++r)
               results.saved_velocities.push_back(r->new_velocity);
           }
       }
     for (unsigned int i = 0; i < n_nodes; ++i)
-      apply_to_node(fields, spacing, dt, n_owned_nodes, record_forces, measure, chunk, i, scratch);
+      apply_to_node(pass, measure, chunk, i, scratch);
   }
 
   template <int dim>
   void
-  BardenhagenContact<dim>::apply_to_node(BodyFields<dim> &                  fields,
-                                         const std::vector<Tensor<1, dim>> &spacing,
-                                         const double                       dt,
-                                         const unsigned int                 n_owned_nodes,
-                                         const bool                         record_forces,
-                                         const bool                         measure,
-                                         const unsigned int                 chunk,
-                                         const unsigned int                 index,
-                                         Scratch &                          scratch)
+  BardenhagenContact<dim>::apply_to_node(const Pass &       pass,
+                                         const bool         measure,
+                                         const unsigned int chunk,
+                                         const unsigned int index,
+                                         Scratch &          scratch)
   {
-    const unsigned int node   = fields.get_contact_nodes()[chunk * chunk_size + index];
+    const unsigned int node   = pass.fields.get_contact_nodes()[chunk * chunk_size + index];
     NodeSums &         sums   = scratch.sums;
     sums.frictional_heat = sums.momentum_defect = sums.momentum_correction = 0;
     sums.pair_forces.assign(pair_forces.size(), Tensor<1, dim>());
     sums.pair_impulses.clear();
-    const auto [begin, end] = fields.node_records(node);
+    const auto [begin, end] = pass.fields.node_records(node);
     apply_at_node(begin,
                   end,
-                  spacing[node],
-                  dt,
-                  node < n_owned_nodes,
-                  record_forces,
+                  pass.spacing[node],
+                  pass.dt,
+                  node < pass.n_owned_nodes,
+                  pass.record_forces,
                   measure,
                   scratch,
                   sums);
@@ -183,13 +176,9 @@ namespace sable::mpm
 
   template <int dim>
   void
-  BardenhagenContact<dim>::redo_capped_nodes(BodyFields<dim> &                  fields,
-                                             const std::vector<Tensor<1, dim>> &spacing,
-                                             const double                       dt,
-                                             const unsigned int                 n_owned_nodes,
-                                             const bool                         record_forces,
-                                             const unsigned int                 chunk,
-                                             Scratch &                          scratch)
+  BardenhagenContact<dim>::redo_capped_nodes(const Pass &       pass,
+                                             const unsigned int chunk,
+                                             Scratch &          scratch)
   {
     // the impulses come node by node
     ChunkResults &results = chunk_results[chunk];
@@ -200,14 +189,14 @@ namespace sable::mpm
           friction_scale.count(impulse.pair) > 0)
         redo.push_back(impulse.node);
 
-    const std::vector<unsigned int> &nodes = fields.get_contact_nodes();
+    const std::vector<unsigned int> &nodes = pass.fields.get_contact_nodes();
     for (const unsigned int index : redo)
       {
         auto saved = results.saved_velocities.cbegin() + results.saved_offsets[index];
-        const auto [begin, end] = fields.node_records(nodes[chunk * chunk_size + index]);
+        const auto [begin, end] = pass.fields.node_records(nodes[chunk * chunk_size + index]);
         for (auto r = begin; r != end; ++r)
           r->new_velocity = *saved++;
-        apply_to_node(fields, spacing, dt, n_owned_nodes, record_forces, false, chunk, index, scratch);
+        apply_to_node(pass, false, chunk, index, scratch);
       }
   }
 

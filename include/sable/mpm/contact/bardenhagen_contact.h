@@ -203,41 +203,34 @@ namespace sable::mpm
                   const Tensor<1, dim> &                  spacing,
                   const double                            dt) const;
 
+    /// What every node of one call of apply() reads.
+    struct Pass
+    {
+      BodyFields<dim> &                  fields;
+      const std::vector<Tensor<1, dim>> &spacing;
+      const double                       dt;
+      const unsigned int                 n_owned_nodes;
+      const bool                         record_forces;
+    };
+
     /// Run apply_at_node() over the contact nodes of chunk @p chunk; with
     /// @p measure, saving the records' velocities first.
     void
-    apply_to_chunk(BodyFields<dim> &                  fields,
-                   const std::vector<Tensor<1, dim>> &spacing,
-                   const double                       dt,
-                   const unsigned int                 n_owned_nodes,
-                   const bool                         record_forces,
-                   const bool                         measure,
-                   const unsigned int                 chunk,
-                   Scratch &                          scratch);
+    apply_to_chunk(const Pass &pass, const bool measure, const unsigned int chunk, Scratch &scratch);
 
     /// Run apply_at_node() at node @p index of chunk @p chunk, storing
     /// what it adds to the sums in the chunk's results.
     void
-    apply_to_node(BodyFields<dim> &                  fields,
-                  const std::vector<Tensor<1, dim>> &spacing,
-                  const double                       dt,
-                  const unsigned int                 n_owned_nodes,
-                  const bool                         record_forces,
-                  const bool                         measure,
-                  const unsigned int                 chunk,
-                  const unsigned int                 index,
-                  Scratch &                          scratch);
+    apply_to_node(const Pass &       pass,
+                  const bool         measure,
+                  const unsigned int chunk,
+                  const unsigned int index,
+                  Scratch &          scratch);
 
     /// Correct again, from their saved velocities, the nodes of chunk
     /// @p chunk where the friction of a capped pair acted.
     void
-    redo_capped_nodes(BodyFields<dim> &                  fields,
-                      const std::vector<Tensor<1, dim>> &spacing,
-                      const double                       dt,
-                      const unsigned int                 n_owned_nodes,
-                      const bool                         record_forces,
-                      const unsigned int                 chunk,
-                      Scratch &                          scratch);
+    redo_capped_nodes(const Pass &pass, const unsigned int chunk, Scratch &scratch);
 
     /// The friction cap per pair from the measured impulses, summed over
     /// all ranks: mu N_net / F_t where the friction exceeds mu N_net.
