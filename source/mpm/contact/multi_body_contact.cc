@@ -29,21 +29,7 @@ namespace sable::mpm
     // until the cells' points change (a sort or a rebinning)
     if (!gimp && cells.version() != cell_bodies_version)
       {
-        cell_bodies.clear();
-        cell_bodies_start.assign(1, 0);
-        for (unsigned int c = 0; c < cells.size(); ++c)
-          {
-            const auto first = cell_bodies.end() - cell_bodies.begin();
-            for (const auto &particle : cells[c].particles)
-              {
-                const unsigned int body =
-                  static_cast<unsigned int>(particle.get_properties()[layout.body]);
-                if (std::find(cell_bodies.begin() + first, cell_bodies.end(), body) ==
-                    cell_bodies.end())
-                  cell_bodies.push_back(body);
-              }
-            cell_bodies_start.push_back(cell_bodies.size());
-          }
+        gather_cell_bodies(cells, layout);
         cell_bodies_version = cells.version();
       }
     // only the cells with points, colour by colour: blocks of one colour
@@ -118,6 +104,49 @@ namespace sable::mpm
         }
     });
     fields.allocate();
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::gather_cell_bodies(const ParticleCells<dim> & cells,
+                                            const ParticleLayout<dim> &layout)
+  {
+    // each block's bodies, cell after cell, and each cell's count; then
+    // the counts become offsets and the blocks are joined in order
+    constexpr unsigned int                 block_size = 512;
+    const unsigned int                     n_cells    = cells.size();
+    const unsigned int                     n_blocks   = (n_cells + block_size - 1) / block_size;
+    std::vector<std::vector<unsigned int>> block_bodies(n_blocks);
+    cell_bodies_start.assign(n_cells + 1, 0);
+    parallel::apply_to_subranges(
+      0u,
+      n_blocks,
+      [&](const unsigned int first_block, const unsigned int end_block) {
+        for (unsigned int block = first_block; block < end_block; ++block)
+          {
+            std::vector<unsigned int> &bodies = block_bodies[block];
+            for (unsigned int c = block * block_size;
+                 c < std::min(n_cells, (block + 1) * block_size);
+                 ++c)
+              {
+                const std::size_t first = bodies.size();
+                for (const auto &particle : cells[c].particles)
+                  {
+                    const unsigned int body =
+                      static_cast<unsigned int>(particle.get_properties()[layout.body]);
+                    if (std::find(bodies.begin() + first, bodies.end(), body) == bodies.end())
+                      bodies.push_back(body);
+                  }
+                cell_bodies_start[c + 1] = bodies.size() - first;
+              }
+          }
+      },
+      1);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      cell_bodies_start[c + 1] += cell_bodies_start[c];
+    cell_bodies.clear();
+    for (const std::vector<unsigned int> &bodies : block_bodies)
+      cell_bodies.insert(cell_bodies.end(), bodies.begin(), bodies.end());
   }
 
   template <int dim>

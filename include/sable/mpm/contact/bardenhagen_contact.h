@@ -34,9 +34,9 @@ namespace sable::mpm
    *   together with pulling normal impulses, the friction of each pair of
    *   bodies is also capped by mu times the pair's net normal impulse over
    *   all its nodes, so that the interface obeys Coulomb as a whole: one
-   *   pass corrects every node uncapped and measures both, then the chunks
-   *   of nodes where a capped pair's friction acted are corrected again
-   *   from their saved velocities;
+   *   pass corrects every node uncapped and measures both, then the nodes
+   *   where a capped pair's friction acted are corrected again from their
+   *   saved velocities;
    * - impulse scaling (paper 002 eq. 22 with the erratum: the factor is
    *   min(gamma/(rate dt), 1)), one factor per node so momentum is kept.
    */
@@ -126,8 +126,8 @@ namespace sable::mpm
       /// per node, the reported pairs' forces
       std::vector<Tensor<1, dim>> node_pair_forces;
       std::vector<PairImpulse>    pair_impulses;
-      /// the records' velocities before the uncapped pass, node by node,
-      /// and where each node's begin
+      /// the records' velocities before the uncapped pass, node after
+      /// node, and where each node's start
       std::vector<Tensor<1, dim>> saved_velocities;
       std::vector<unsigned int>   saved_offsets;
     };
@@ -153,8 +153,8 @@ namespace sable::mpm
       std::vector<unsigned int> nodes_to_redo;
     };
 
-    /// Contact nodes per chunk of the threaded loop; fixed, so that the
-    /// sums, added chunk by chunk, do not depend on the number of threads.
+    /// Contact nodes per chunk of the threaded loop, which keeps its
+    /// nodes' results (ChunkResults).
     static constexpr unsigned int chunk_size = 256;
 
     /// Contact at one node: changes only that node's records; with

@@ -224,6 +224,12 @@ namespace sable::mpm
                            const double             time_step,
                            const unsigned int       n_owned_nodes);
 
+    /// Gather the bodies of each cell's points into cell_bodies, threaded
+    /// over fixed blocks of cells (the same list for any number of
+    /// threads).
+    void
+    gather_cell_bodies(const ParticleCells<dim> &cells, const ParticleLayout<dim> &layout);
+
     bool heat_at_remap = false;
 
     const PrescribedVelocities<dim> *prescribed  = nullptr;
