@@ -10,8 +10,9 @@
 //
 // Usage: contact_scaling [cells per direction = 256] [steps = 40]
 //                        [pairwise (default) | centre-of-mass]
-//                        [grains per side: only this tiling]
-// (the treatment of nodes with three or more bodies)
+//                        [grains per side: only this tiling] [timings]
+// (the treatment of nodes with three or more bodies; 'timings' prints the
+// wall time of each phase of the timed steps of every run)
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
@@ -37,6 +38,7 @@ namespace
                    const ContactParameters::Model model,
                    const ContactParameters::MultiBodyNodes multi_body_nodes,
                    const unsigned int n_steps,
+                   const bool         print_timings,
                    unsigned long long &n_particles,
                    double &            momentum_defect)
   {
@@ -78,10 +80,14 @@ namespace
     simulator.initialize();
     n_particles = simulator.get_particle_handler().n_global_particles();
     simulator.step(); // warm-up: first allocation of the contact tables
+    // the phases' times from here on: the warm-up step is not counted
+    simulator.get_timer().reset();
     Timer timer;
     for (unsigned int n = 0; n < n_steps; ++n)
       simulator.step();
     const double seconds = timer.wall_time() / n_steps;
+    if (print_timings)
+      simulator.get_timer().print_summary();
     if (const auto *contact = simulator.get_contact())
       momentum_defect = contact->momentum_defect / std::max(contact->momentum_correction, 1e-300);
     return seconds;
@@ -103,17 +109,19 @@ main(int argc, char **argv)
   std::vector<unsigned int> tilings = {1u, 4u, 10u, 32u, 100u};
   if (argc > 4)
     tilings = {static_cast<unsigned int>(std::stoi(argv[4]))};
+  const bool print_timings = argc > 5 && std::string(argv[5]) == "timings";
   for (const unsigned int per_side : tilings)
     {
       unsigned long long n_particles = 0;
       double             defect      = 0;
       const double none = seconds_per_step(n_cells, per_side, ContactParameters::Model::none,
-                                           multi_body_nodes, n_steps, n_particles, defect);
+                                           multi_body_nodes, n_steps, print_timings, n_particles, defect);
       const double with_contact = seconds_per_step(n_cells,
                                                    per_side,
                                                    ContactParameters::Model::bardenhagen_2001,
                                                    multi_body_nodes,
                                                    n_steps,
+                                                   print_timings,
                                                    n_particles,
                                                    defect);
       std::cout << "| " << per_side * per_side << " | " << n_particles << " | " << std::fixed

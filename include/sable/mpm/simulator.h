@@ -163,6 +163,15 @@ namespace sable::mpm
       return contact ? &contact->get_model() : nullptr;
     }
 
+    /// The wall time of each phase of the steps so far (the sections
+    /// run() prints when Output/Print timings is set); reset() it to time
+    /// only the steps that follow.
+    TimerOutput &
+    get_timer()
+    {
+      return timer;
+    }
+
     /// Total work done by moving walls so far.
     double
     get_boundary_work() const

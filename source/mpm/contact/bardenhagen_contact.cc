@@ -186,7 +186,7 @@ namespace sable::mpm
     redo.clear();
     for (const PairImpulse &impulse : results.pair_impulses)
       if (impulse.friction > 0 && (redo.empty() || redo.back() != impulse.node) &&
-          friction_scale.count(impulse.pair) > 0)
+          friction_scale.find(impulse.pair) != nullptr)
         redo.push_back(impulse.node);
 
     const std::vector<unsigned int> &nodes = pass.fields.get_contact_nodes();
@@ -207,8 +207,8 @@ namespace sable::mpm
     // per pair: net normal impulse, friction impulse (chunk by chunk, so
     // the sums do not depend on the threads; each pair's sum is formed in
     // the same order whatever the order of the pairs)
-    std::unordered_map<std::pair<unsigned int, unsigned int>, std::pair<double, double>, PairHash>
-      totals;
+    PairTable<std::pair<double, double>> &totals = pair_totals;
+    totals.clear();
     for (const ChunkResults &results : chunk_results)
       for (const PairImpulse &impulse : results.pair_impulses)
         if (impulse.owned)
@@ -221,8 +221,9 @@ namespace sable::mpm
       {
         // every rank's pairs to every rank, added in rank order
         std::vector<double> local;
-        for (const auto &[pair, total] : totals)
+        totals.for_each([&](const auto &pair, const auto &total) {
           local.insert(local.end(), {double(pair.first), double(pair.second), total.first, total.second});
+        });
         totals.clear();
         for (const std::vector<double> &part : Utilities::MPI::all_gather(communicator, local))
           for (unsigned int i = 0; i + 3 < part.size(); i += 4)
@@ -233,14 +234,13 @@ namespace sable::mpm
               total.second += part[i + 3];
             }
       }
-    for (const auto &[pair, total] : totals)
-      {
-        const double mu =
-          parameters.friction_between(body_groups[pair.first], body_groups[pair.second]);
-        const double allowed = mu * std::max(total.first, 0.);
-        if (total.second > allowed)
-          friction_scale[pair] = allowed / total.second;
-      }
+    totals.for_each([&](const auto &pair, const auto &total) {
+      const double mu =
+        parameters.friction_between(body_groups[pair.first], body_groups[pair.second]);
+      const double allowed = mu * std::max(total.first, 0.);
+      if (total.second > allowed)
+        friction_scale[pair] = allowed / total.second;
+    });
   }
 
   template <int dim>
@@ -263,21 +263,26 @@ namespace sable::mpm
     auto &tangential_speed  = scratch.tangential_speed;
     auto &tangential_change = scratch.tangential_change;
     auto &friction          = scratch.friction;
+    double total_mass = 0;
+    for (const Record *r = begin; r != end; ++r)
+      total_mass += r->mass;
+    if (total_mass <= 0)
+      return;
+    // pairwise nodes need neither the bodies' combined normals nor the
+    // centre of mass
+    if (n > 2 && parameters.multi_body_nodes == ContactParameters::MultiBodyNodes::pairwise)
+      {
+        apply_pairwise_at_node(begin, end, spacing, dt, owned, record_forces, measure, scratch, sums);
+        return;
+      }
     normal.resize(n);
     change.resize(n);
     friction.resize(n);
     tangential_speed.resize(n);
     tangential_change.resize(n);
-
-    double         total_mass = 0;
     Tensor<1, dim> total_momentum;
     for (const Record *r = begin; r != end; ++r)
-      {
-        total_mass += r->mass;
-        total_momentum += r->mass * r->new_velocity;
-      }
-    if (total_mass <= 0)
-      return;
+      total_momentum += r->mass * r->new_velocity;
     const Tensor<1, dim> centre_of_mass_velocity = total_momentum / total_mass;
 
     // outward unit normals: sum_p m_p grad N_i(x_p) points from the
@@ -345,11 +350,6 @@ namespace sable::mpm
                                     spacing,
                                     dt);
       }
-    else if (parameters.multi_body_nodes == ContactParameters::MultiBodyNodes::pairwise)
-      {
-        apply_pairwise_at_node(begin, end, spacing, dt, owned, record_forces, measure, scratch, sums);
-        return;
-      }
 
     double rate = 0;
     for (unsigned int a = 0; a < n; ++a)
@@ -385,15 +385,15 @@ namespace sable::mpm
             if (measure)
               sums.pair_impulses.push_back(
                 {pair, r.mass * dv_n, r.mass * correction.tangential_change, owned});
-            const auto capped = correction.tangential_change > 0 ? friction_scale.find(pair) :
-                                                                   friction_scale.end();
-            if (capped != friction_scale.end())
+            const double *const capped =
+              correction.tangential_change > 0 ? friction_scale.find(pair) : nullptr;
+            if (capped != nullptr)
               {
                 // the normal part stays, the friction part shrinks
                 const Tensor<1, dim> normal_part = -dv_n * normal[a];
-                change[a] = normal_part + capped->second * (correction.change - normal_part);
-                friction[a] *= capped->second;
-                tangential_change[a] *= capped->second;
+                change[a] = normal_part + *capped * (correction.change - normal_part);
+                friction[a] *= *capped;
+                tangential_change[a] *= *capped;
               }
           }
         // the cell-collapse rate of paper 002 section 2.2
@@ -592,13 +592,13 @@ namespace sable::mpm
               const std::pair<unsigned int, unsigned int> pair(ra.body, rb.body);
               if (measure)
                 sums.pair_impulses.push_back({pair, ra.mass * dv_n, ra.mass * tau, owned});
-              const auto capped = tau > 0 ? friction_scale.find(pair) : friction_scale.end();
-              if (capped != friction_scale.end())
+              const double *const capped = tau > 0 ? friction_scale.find(pair) : nullptr;
+              if (capped != nullptr)
                 {
                   const Tensor<1, dim> normal_part = -dv_n * common;
-                  change_a = normal_part + capped->second * (change_a - normal_part);
-                  friction_a *= capped->second;
-                  tau *= capped->second;
+                  change_a = normal_part + *capped * (change_a - normal_part);
+                  friction_a *= *capped;
+                  tau *= *capped;
                 }
             }
           velocity[a] += change_a;

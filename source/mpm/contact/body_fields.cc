@@ -29,27 +29,44 @@ namespace sable::mpm
   void
   BodyFields<dim>::allocate()
   {
-    std::sort(extra_bodies.begin(), extra_bodies.end());
-    extra_bodies.erase(std::unique(extra_bodies.begin(), extra_bodies.end()),
-                       extra_bodies.end());
-    Record zero{};
-    for (auto it = extra_bodies.begin(); it != extra_bodies.end();)
-      {
-        const unsigned int node = it->first;
+    // the extra pairs bucketed by node (a counting sort: sorting every pair,
+    // each present once per cell around its node, cost more than the rest
+    // of the search); n_records is zero at every node here
+    for (const auto &[node, body] : extra_bodies)
+      if (n_records[node]++ == 0)
         contact_nodes.push_back(node);
+    std::sort(contact_nodes.begin(), contact_nodes.end());
+    unsigned int offset = 0;
+    for (const unsigned int node : contact_nodes)
+      {
+        first_record[node] = offset;
+        offset += n_records[node];
+        n_records[node] = 0;
+      }
+    extra_by_node.resize(extra_bodies.size());
+    for (const auto &[node, body] : extra_bodies)
+      extra_by_node[first_record[node] + n_records[node]++] = body;
+
+    Record zero{};
+    for (const unsigned int node : contact_nodes)
+      {
+        const auto begin = extra_by_node.begin() + first_record[node];
+        auto       end   = begin + n_records[node];
+        std::sort(begin, end);
+        end                = std::unique(begin, end);
         first_record[node] = records.size();
-        // the node's bodies, sorted: the first one seen, merged into the
-        // (sorted) extra ones
+        // the node's bodies, sorted: the first one seen (never among the
+        // extra ones) merged into the extra ones
         bool first_placed = false;
-        for (; it != extra_bodies.end() && it->first == node; ++it)
+        for (auto body = begin; body != end; ++body)
           {
-            if (!first_placed && first_body[node] < it->second)
+            if (!first_placed && first_body[node] < *body)
               {
                 zero.body = first_body[node];
                 records.push_back(zero);
                 first_placed = true;
               }
-            zero.body = it->second;
+            zero.body = *body;
             records.push_back(zero);
           }
         if (!first_placed)

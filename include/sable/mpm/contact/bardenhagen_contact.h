@@ -2,12 +2,11 @@
 #define sable_mpm_contact_bardenhagen_contact_h
 
 #include <sable/mpm/contact/body_fields.h>
+#include <sable/mpm/contact/pair_table.h>
 #include <sable/mpm/parameters.h>
 
 #include <deal.II/base/mpi.h>
 
-#include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -253,17 +252,10 @@ namespace sable::mpm
     pair_index(const unsigned int a, const unsigned int b) const;
 
     std::vector<ChunkResults> chunk_results;
-    /// a pair of body numbers as one 64-bit key
-    struct PairHash
-    {
-      std::size_t
-      operator()(const std::pair<unsigned int, unsigned int> &pair) const noexcept
-      {
-        return std::hash<std::uint64_t>()((std::uint64_t(pair.first) << 32) | pair.second);
-      }
-    };
+    /// per pair, this pass's net normal and friction impulses
+    PairTable<std::pair<double, double>> pair_totals;
     /// this pass's friction scale of the pairs whose friction is capped
-    std::unordered_map<std::pair<unsigned int, unsigned int>, double, PairHash> friction_scale;
+    PairTable<double> friction_scale;
   };
 } // namespace sable::mpm
 

@@ -156,6 +156,8 @@ namespace sable::mpm
   private:
     std::vector<unsigned int>                            first_body;
     std::vector<std::pair<unsigned int, unsigned int>>   extra_bodies;
+    /// allocate()'s scratch: the extra bodies, node after node
+    std::vector<unsigned int>                            extra_by_node;
     std::vector<unsigned int>                            first_record;
     std::vector<unsigned int>                            n_records;
     std::vector<unsigned int>                            contact_nodes;
