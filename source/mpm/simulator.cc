@@ -326,6 +326,7 @@ namespace sable::mpm
           << MultithreadInfo::n_threads() << " thread(s) per rank" << std::endl;
     if (parallel)
       print_balance();
+    print_seeding_note();
     initialized = true;
     if (!parameters.output_directory.empty() && parameters.output_interval > 0)
       write_particles();
@@ -920,6 +921,32 @@ namespace sable::mpm
     triangulation.repartition();
     particle_handler->unpack_after_coarsening_and_refinement();
     setup_after_mesh_change();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::print_seeding_note() const
+  {
+    bool friction_walls = false;
+    for (const auto &[id, boundary] : parameters.boundaries)
+      friction_walls = friction_walls || boundary.type == BoundaryType::friction;
+    if (!contact && !friction_walls)
+      return;
+    unsigned int n_lattice_disks = 0;
+    for (const auto &body : parameters.bodies)
+      n_lattice_disks += body.shape == BodyParameters<dim>::Shape::disk &&
+                         body.seeding == BodyParameters<dim>::Seeding::lattice;
+    if (n_lattice_disks == 0)
+      return;
+    const bool plural = n_lattice_disks > 1;
+    pcout << "note: " << n_lattice_disks << (dim == 2 ? " disk" : " sphere") << (plural ? "s" : "")
+          << " seeded on the lattice (the default Seeding): "
+          << (dim == 2 ? "the edge is a staircase, which rolls like a polygon (16 cells per "
+                         "diameter on a plane body: 8% behind a rigid disk); Seeding = "
+                         "conforming follows the circle (0.2%)" :
+                         "the surface is a staircase; Seeding = conforming puts the points on "
+                         "shells, which helps some rolling cases and not others")
+          << " (doc/mpm.md, \"Seeding round bodies\")" << std::endl;
   }
 
   template <int dim>

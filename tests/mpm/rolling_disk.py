@@ -19,7 +19,10 @@ rolling within 3% of the rigid travel at 16 cells per diameter, checked on
 the A1 case and on a smaller, stiffer disk at another angle and friction
 that the criterion was not tuned on, with the linear and with the GIMP
 shape functions ('Grid/Shape functions = gimp'). Measured x / x_rigid:
-A1 0.9792 (linear), 0.9859 (GIMP); the stiffer disk 0.9803, 0.9930."""
+A1 0.9792 (linear), 0.9859 (GIMP); the stiffer disk 0.9803, 0.9930.
+
+A disk seeded on the lattice (the default) next to a friction wall gets a
+note at the start of the run, one seeded conforming none."""
 import math
 from scene_test import *
 
@@ -78,4 +81,18 @@ for name, kwargs in (("A1 pi/6, mu 0.5", dict()),
               f"{x:.4f}")
         check(f"{label}: particles kept", rows[-1]["particles"] == rows[0]["particles"],
               f"{rows[-1]['particles']} of {rows[0]['particles']}")
+
+# a disk seeded on the lattice that meets a friction wall gets a note at the
+# start (its staircase edge rolls like a polygon); seeded conforming, none
+for seeding in ("lattice", "conforming"):
+    _, output, _ = run(f"seeding_note_{seeding}", {
+        "Dimension": 2, "Time/Maximum number of steps": 2,
+        "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1", "Grid/Subdivisions": "16, 8",
+        "Boundary conditions/Types": "2: friction",
+        "Boundary conditions/Friction coefficients": "2: 0.5",
+    }, [{"Shape": "disk", "Center": "1, 0.3", "Radius": 0.25, "Seeding": seeding,
+         "Bulk modulus": 1e7, "Shear modulus": 2.5e6, "Density": 3000}])
+    noted = "note: 1 disk seeded on the lattice" in output
+    check(f"{seeding} seeding: the seeding note {'is' if seeding == 'lattice' else 'is not'} printed",
+          noted == (seeding == "lattice"), output.splitlines()[1] if len(output.splitlines()) > 1 else output)
 finish()

@@ -300,6 +300,10 @@ namespace sable::mpm
     /// Console line: material points, cells and work per rank (min .. max).
     void
     print_balance() const;
+    /// Console note where disks (spheres) seeded on the lattice meet
+    /// contact: their staircase surface rolls like a polygon.
+    void
+    print_seeding_note() const;
     /// Particle output, with the contact nodes and the grid if asked for.
     void
     write_particles();
