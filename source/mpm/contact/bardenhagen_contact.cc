@@ -18,6 +18,7 @@ namespace sable::mpm
     : parameters(parameters)
     , body_groups(body_groups)
     , use_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
+    , cap_friction(use_traction && parameters.any_finite_friction())
   {
     const unsigned int n = body_groups.size();
     pair_forces.assign(parameters.reported_pairs.size(), Tensor<1, dim>());
@@ -78,9 +79,9 @@ namespace sable::mpm
     };
     const Pass pass{fields, spacing, dt, n_owned_nodes, record_forces};
     for_each_chunk([&](const unsigned int chunk, Scratch &scratch) {
-      apply_to_chunk(pass, use_traction, chunk, scratch);
+      apply_to_chunk(pass, cap_friction, chunk, scratch);
     });
-    if (use_traction)
+    if (cap_friction)
       {
         compute_friction_scales(communicator);
         if (!friction_scale.empty())
@@ -207,7 +208,7 @@ namespace sable::mpm
     // per pair: net normal impulse, friction impulse (chunk by chunk, so
     // the sums do not depend on the threads; each pair's sum is formed in
     // the same order whatever the order of the pairs)
-    PairTable<std::pair<double, double>> &totals = pair_totals;
+    auto &totals = pair_totals;
     totals.clear();
     for (const ChunkResults &results : chunk_results)
       for (const PairImpulse &impulse : results.pair_impulses)
@@ -376,7 +377,7 @@ namespace sable::mpm
         friction[a]                             = correction.friction;
         tangential_speed[a]                     = correction.tangential_speed;
         tangential_change[a]                    = correction.tangential_change;
-        if (use_traction && std::isfinite(mu))
+        if (cap_friction && std::isfinite(mu))
           {
             // the pair's normal impulses, pulling ones included, and its
             // friction impulses
@@ -587,7 +588,7 @@ namespace sable::mpm
           Tensor<1, dim>               change_a   = correction.change;
           Tensor<1, dim>               friction_a = correction.friction;
           double                       tau        = correction.tangential_change;
-          if (use_traction && std::isfinite(mu))
+          if (cap_friction && std::isfinite(mu))
             {
               const std::pair<unsigned int, unsigned int> pair(ra.body, rb.body);
               if (measure)

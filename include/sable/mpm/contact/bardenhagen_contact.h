@@ -241,6 +241,9 @@ namespace sable::mpm
     /// index into pair_forces of the pair (a, b), a < b; or invalid
     std::vector<unsigned int> reported_pair_index;
     const bool                use_traction;
+    /// the 2001 rule with a friction that can be capped: the pass measures
+    /// the pairs' impulses and saves the velocities to correct again
+    const bool                cap_friction;
     bool                      heat_at_nodes = true;
     /// surfaces closer than this, in cells, touch (surfaces_meet())
     static constexpr double touching_tolerance = 0.01;

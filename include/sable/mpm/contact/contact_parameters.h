@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 #include <vector>
@@ -78,6 +79,19 @@ namespace sable::mpm
       const auto it =
         group_friction.find({std::min(group_a, group_b), std::max(group_a, group_b)});
       return it == group_friction.end() ? friction : it->second;
+    }
+
+    /// Whether some pair of groups may have a finite, positive friction
+    /// coefficient (the default one or a group pair's): only there can the
+    /// 2001 rule's friction cap act.
+    bool
+    any_finite_friction() const
+    {
+      const auto finite_positive = [](const double mu) { return mu > 0 && std::isfinite(mu); };
+      bool any = finite_positive(friction);
+      for (const auto &[groups, mu] : group_friction)
+        any = any || finite_positive(mu);
+      return any;
     }
 
     /// Declare the entries of the current subsection.
