@@ -44,6 +44,8 @@ namespace sable::mpm
     using Layout = ParticleLayout<dim>;
     if (update_strain_rates)
       velocity_gradients.resize(particle_handler.get_max_local_particle_index());
+    const bool                 affine       = layout.affine_stored;
+    const std::vector<double> &mass         = fields.get_mass();
     const std::vector<double> &new_velocity = fields.get_new_velocity();
     const std::vector<double> &old_velocity = fields.get_old_velocity();
 
@@ -71,6 +73,10 @@ namespace sable::mpm
                 const bool driven = drivers != nullptr && drivers->is_prescribed(body);
                 Tensor<1, dim> velocity_change, grid_velocity;
                 Tensor<2, dim> L;
+                // the gradients of the nodes without mass of the point's
+                // body (the point lies on their cells' face)
+                Tensor<1, dim> massless_gradient;
+                bool           any_massless = false;
                 if (driven)
                   {
                     // a rigid driver: its velocity, whatever the grid says
@@ -86,15 +92,25 @@ namespace sable::mpm
                 for (unsigned int v = 0; v < (driven ? 0 : shape.n_nodes); ++v)
                   {
                     const unsigned int node  = shape.nodes[v];
-                    const double *     v_new = &new_velocity[node * dim];
-                    const double *     v_old = &old_velocity[node * dim];
+                    const double *     v_new     = &new_velocity[node * dim];
+                    const double *     v_old     = &old_velocity[node * dim];
+                    double             node_mass = mass[node];
                     // each particle reads its own body's field
                     if (contact != nullptr)
                       if (const auto *record = contact->velocities(node, body))
                         {
-                          v_new = &record->new_velocity[0];
-                          v_old = &record->old_velocity[0];
+                          v_new     = &record->new_velocity[0];
+                          v_old     = &record->old_velocity[0];
+                          node_mass = record->mass;
                         }
+                    // a node without mass has no velocity: it only
+                    // completes the gradients' partition of zero, below
+                    if (node_mass == 0.)
+                      {
+                        massless_gradient += shape.gradients[v];
+                        any_massless = true;
+                        continue;
+                      }
                     const double N = shape.values[v];
                     for (unsigned int d = 0; d < dim; ++d)
                       {
@@ -107,6 +123,24 @@ namespace sable::mpm
                           for (unsigned int e = 0; e < dim; ++e)
                             L[d][e] += v_new[d] * shape.gradients[v][e];
                       }
+                  }
+                if (update_strain_rates && any_massless)
+                  {
+                    // the massless nodes move with the point (N = 0 there):
+                    // sum (v_i - v_p) grad N_i over the nodes with mass, so
+                    // that a uniform motion has no gradient
+                    Tensor<1, dim> interpolated;
+                    for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                      {
+                        const unsigned int node  = shape.nodes[v];
+                        const double *     v_new = &new_velocity[node * dim];
+                        if (contact != nullptr)
+                          if (const auto *record = contact->velocities(node, body))
+                            v_new = &record->new_velocity[0];
+                        for (unsigned int d = 0; d < dim; ++d)
+                          interpolated[d] += shape.values[v] * v_new[d];
+                      }
+                    L += outer_product(interpolated, massless_gradient);
                   }
                 if constexpr (update_positions)
                   {
@@ -137,7 +171,14 @@ namespace sable::mpm
                       local.fail(false, particle.get_id(), location);
                   }
                 if constexpr (update_strain_rates)
-                  velocity_gradients[particle.get_local_index()] = L;
+                  {
+                    velocity_gradients[particle.get_local_index()] = L;
+                    // the affine transfers carry the gradient of the
+                    // stress update (MUSL: of the remapped velocities; the
+                    // momentum update's are noisy at nodes of little mass)
+                    if (affine)
+                      layout.set_affine(props, L);
+                  }
               }
           }
         std::lock_guard<std::mutex> lock(report_mutex);

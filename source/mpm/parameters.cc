@@ -79,6 +79,18 @@ namespace sable::mpm
                       Patterns::Double(),
                       "Blend of PIC into the FLIP velocity update, in [0, 1] "
                       "(0: pure FLIP, 1: pure PIC).");
+    prm.declare_entry("Affine transfers",
+                      "false",
+                      Patterns::Bool(),
+                      "Carry each point's velocity gradient C into the "
+                      "particle-to-grid transfer, m_i v_i = sum N_i m_p (v_p + "
+                      "C_p (x_i - x_p)) (the affine transfers of APIC; with "
+                      "the FLIP update, affine FLIP). A rigid motion then "
+                      "reaches the grid exactly, and a spinning body keeps "
+                      "its spin (doc/mpm.md, Spinning bodies). Needs "
+                      "'Grid/Shape functions' = gimp and 'Update scheme' = "
+                      "USL (unstable otherwise); dim x dim more properties "
+                      "per point.");
     prm.declare_entry("Balance particles across ranks",
                       "true",
                       Patterns::Bool(),
@@ -333,6 +345,16 @@ namespace sable::mpm
     for (unsigned int b = 0; b < p.bodies.size(); ++b)
       p.bodies[b].check(p.bodies[b].name(b));
     p.refinement.check();
+    // measured in doc/mpm.md, Spinning bodies: with linear functions the
+    // gradient of a node of little mass stays large while its weight
+    // vanishes, and its noisy velocity spreads through C; under MUSL the
+    // remap would use the last step's C, a lag that pumps energy
+    check_input(!p.affine_transfers || (p.shape_functions == ShapeFunctions::gimp &&
+                                        p.update_scheme == UpdateScheme::usl),
+                "Solver/Affine transfers",
+                "true",
+                "false unless Grid/Shape functions = gimp and Solver/Update scheme = USL "
+                "(affine transfers are unstable with linear functions or MUSL)");
     check_input(p.shape_functions == ShapeFunctions::linear || !p.refinement.enabled(),
                 "Grid/Shape functions",
                 "gimp",
@@ -375,6 +397,7 @@ namespace sable::mpm
     prm.enter_subsection("Solver");
     p.update_scheme = update_schemes.value(prm.get("Update scheme"));
     p.pic_fraction  = prm.get_double("PIC fraction");
+    p.affine_transfers = prm.get_bool("Affine transfers");
     p.balance_particles = prm.get_bool("Balance particles across ranks");
     p.settling_steps    = prm.get_integer("Settling steps");
     p.settling_tolerance = prm.get_double("Settling tolerance");

@@ -1,6 +1,7 @@
 #include <sable/mpm/particle_to_grid.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sable::mpm
@@ -26,6 +27,7 @@ namespace sable::mpm
     const auto add_to_single_field = [&](const auto &                     particle,
                                          const ArrayView<const double> &  props,
                                          const typename Grid<dim>::Shape &shape,
+                                         const Tensor<1, dim> *           velocities,
                                          const Tensor<2, dim> &           volume_stress) {
       const double mass = props[Layout::mass];
       if (extent != nullptr)
@@ -64,7 +66,7 @@ namespace sable::mpm
           const double  weight = mass * shape.values[v];
           node[0] += weight;
           for (unsigned int d = 0; d < dim; ++d)
-            node[1 + d] += weight * props[Layout::velocity + d];
+            node[1 + d] += weight * velocities[v][d];
           if constexpr (momentum_update)
             {
               const Tensor<1, dim> force = -(volume_stress * shape.gradients[v]);
@@ -74,9 +76,33 @@ namespace sable::mpm
         }
     };
 
+    // the point's velocity as each node of @p shape sees it: v_p, or
+    // v_p + C (x_i - x_p) with the affine transfers
+    const std::vector<Point<dim>> &node_positions = grid.node_positions();
+    const auto velocities_at_nodes = [&](const auto &                     particle,
+                                         const ArrayView<const double> &  props,
+                                         const typename Grid<dim>::Shape &shape,
+                                         Tensor<1, dim> *                 velocities) {
+      Tensor<1, dim> velocity;
+      for (unsigned int d = 0; d < dim; ++d)
+        velocity[d] = props[Layout::velocity + d];
+      if (!layout.affine_stored)
+        {
+          for (unsigned int v = 0; v < shape.n_nodes; ++v)
+            velocities[v] = velocity;
+          return;
+        }
+      const Tensor<2, dim> C = layout.affine_gradient(props);
+      for (unsigned int v = 0; v < shape.n_nodes; ++v)
+        velocities[v] =
+          velocity +
+          C * (node_positions[shape.nodes[v]] - shape.image_for_node(particle.get_location(), v));
+    };
+
     // the cell worker
     const auto scatter_cell = [&](const typename ParticleCells<dim>::Cell &cell,
-                                  typename Grid<dim>::Shape &              shape) {
+                                  typename Grid<dim>::Shape &              shape,
+                                  Tensor<1, dim> *                         velocities) {
       const bool near_contact = contact != nullptr && contact->touches(grid.cell_nodes(*cell.data));
       if (!cell.owned && !near_contact)
         return;
@@ -89,18 +115,22 @@ namespace sable::mpm
                         shape);
           const Tensor<2, dim>          volume_stress =
             momentum_update ? Layout::volume_stress(props) : Tensor<2, dim>();
+          velocities_at_nodes(particle, props, shape, velocities);
           if (near_contact)
-            contact->template scatter<pass>(props, particle.get_location(), shape, volume_stress);
+            contact->template scatter<pass>(
+              props, particle.get_location(), shape, velocities, volume_stress);
           if (cell.owned)
-            add_to_single_field(particle, props, shape, volume_stress);
+            add_to_single_field(particle, props, shape, velocities, volume_stress);
         }
     };
 
     cells.for_each_coloured_range([&](const unsigned int *begin, const unsigned int *end) {
-      // the worker's scratch: the shape functions at one point
-      typename Grid<dim>::Shape shape;
+      // the worker's scratch: the shape functions at one point and the
+      // point's velocity as each of their nodes sees it
+      typename Grid<dim>::Shape                                  shape;
+      std::array<Tensor<1, dim>, Grid<dim>::max_nodes_per_cell> velocities;
       for (const unsigned int *c = begin; c != end; ++c)
-        scatter_cell(cells[*c], shape);
+        scatter_cell(cells[*c], shape, velocities.data());
     });
     fields.template compress<pass>();
   }

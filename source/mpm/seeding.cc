@@ -86,6 +86,9 @@ namespace sable::mpm
           for (unsigned int d = 0; d < dim; ++d)
             properties[layout.velocity + d] =
               velocity ? (*velocity)[d] : body.velocity[d] + omega_cross_r[d];
+          // the affine transfers start from the spin's velocity gradient
+          if (layout.affine_stored && velocity == nullptr)
+            layout.set_affine(properties, spin_velocity_gradient<dim>(body.angular_velocity));
           for (unsigned int d = 0; d < dim; ++d)
             properties[layout.deformation + d * dim + d] = 1.;
           if (body.lithostatic_stress)

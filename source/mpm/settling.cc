@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <sable/base/input_error.h>
+#include <sable/mpm/seeding.h>
 #include <sable/mpm/simulator.h>
 
 #include <limits>
@@ -16,6 +17,8 @@ namespace sable::mpm
         auto props = particle.get_properties();
         for (unsigned int d = 0; d < dim; ++d)
           props[layout.velocity + d] = 0.;
+        if (layout.affine_stored)
+          layout.set_affine(props, Tensor<2, dim>());
       }
     const auto publish_velocities = [&]() {
       if (contact && parallel)
@@ -52,8 +55,13 @@ namespace sable::mpm
             if (peak <= parameters.settling_tolerance * strain_energy)
               break;
             for (auto &particle : *particle_handler)
-              for (unsigned int d = 0; d < dim; ++d)
-                particle.get_properties()[layout.velocity + d] = 0.;
+              {
+                auto props = particle.get_properties();
+                for (unsigned int d = 0; d < dim; ++d)
+                  props[layout.velocity + d] = 0.;
+                if (layout.affine_stored)
+                  layout.set_affine(props, Tensor<2, dim>());
+              }
             publish_velocities();
             previous = 0;
           }
@@ -96,6 +104,8 @@ namespace sable::mpm
         Tensor<1, dim>     v;
         for (unsigned int d = 0; d < dim; ++d)
           props[layout.velocity + d] = v[d] = body.velocity[d] + spin[d];
+        if (layout.affine_stored)
+          layout.set_affine(props, spin_velocity_gradient<dim>(body.angular_velocity));
         // displacements count from time 0, the settled state
         if (layout.initial_position_stored)
           for (unsigned int d = 0; d < dim; ++d)

@@ -121,6 +121,9 @@ namespace sable::mpm
         layout.n_history = std::max(layout.n_history, materials.back()->n_history());
       }
     layout.initial_position_stored = parameters.displacement_output;
+    layout.affine_stored           = parameters.affine_transfers;
+    particle_to_grid.set_layout(layout);
+    grid_to_particle.set_layout(layout);
     if (parameters.contact.model != ContactParameters::Model::none &&
         parameters.bodies.size() > 1)
       {

@@ -48,6 +48,10 @@ cases = [
                          "Mesh refinement/Maximum level": 1}, {},
      ["Grid/Shape functions", "gimp", "Mesh refinement"]),
     ("shape_functions", {"Grid/Shape functions": "quadratic"}, {}, ["Shape functions", "quadratic"]),
+    ("affine_linear", {"Solver/Affine transfers": "true", "Solver/Update scheme": "USL"}, {},
+     ["Solver/Affine transfers", "true", "Grid/Shape functions = gimp", "USL"]),
+    ("affine_musl", {"Solver/Affine transfers": "true", "Grid/Shape functions": "gimp"}, {},
+     ["Solver/Affine transfers", "true", "Grid/Shape functions = gimp", "USL"]),
 ]
 
 for name, entries, body_changes, words in cases:

@@ -21,7 +21,10 @@ namespace sable::mpm
    * field elsewhere) and updates its velocity (FLIP with a PIC fraction)
    * and position, or stores its velocity gradient L = sum v_i grad N_i for
    * the stress update, or both in one pass (USL). Each point changes only
-   * its own data, so threads change nothing.
+   * its own data, so threads change nothing. A node without mass of the
+   * point's body (the point on its cell's face: N = 0, grad N != 0) has
+   * no velocity; it enters L as if it moved with the point, so that a
+   * uniform motion has no gradient.
    */
   template <int dim>
   class GridToParticle
@@ -63,6 +66,15 @@ namespace sable::mpm
     set_prescribed_velocities(const PrescribedVelocities<dim> *drivers)
     {
       prescribed = drivers;
+    }
+
+    /// With the affine transfers (@p layout stores C), computing the
+    /// strain rates also stores each point's C = L, the velocity gradient
+    /// of its stress update.
+    void
+    set_layout(const ParticleLayout<dim> &particle_layout)
+    {
+      layout = particle_layout;
     }
 
     /// New velocities v = (1 - alpha)(v + sum N (v_new - v_old)) +
@@ -111,6 +123,7 @@ namespace sable::mpm
     const std::vector<double> &  body_wave_speed;
     std::vector<Tensor<2, dim>> &velocity_gradients;
     const PrescribedVelocities<dim> *prescribed = nullptr;
+    ParticleLayout<dim>              layout;
   };
 } // namespace sable::mpm
 

@@ -58,6 +58,11 @@ namespace sable::mpm
     UpdateScheme update_scheme = UpdateScheme::musl;
     /// Fraction of PIC in the particle velocity update (0 = pure FLIP).
     double pic_fraction = 0.;
+    /// Solver/Affine transfers: each point carries its velocity gradient C
+    /// into the particle-to-grid transfers, v_p + C (x_i - x_p) at node i
+    /// (APIC's affine velocity; with FLIP, affine FLIP), so that rigid
+    /// rotations reach the grid exactly.
+    bool affine_transfers = false;
     /// With two or more MPI ranks: after seeding, repartition the grid so
     /// that every rank holds about the same work, a cell costing
     /// Simulator::cell_cost plus Simulator::particle_cost per material

@@ -17,6 +17,8 @@ namespace sable::mpm
    *   mass | initial volume | body | velocity (dim) | F (dim x dim, row-major)
    *   | stress (xx yy zz xy xz yz) | history (n_history)
    *   | initial position (dim, if stored)
+   *   | velocity gradient C of the affine transfers (dim x dim, row-major,
+   *     if stored)
    */
   template <int dim>
   struct ParticleLayout
@@ -34,6 +36,10 @@ namespace sable::mpm
     /// Whether each point keeps the position it was seeded at.
     bool initial_position_stored = false;
 
+    /// Whether each point carries the velocity gradient C of the affine
+    /// transfers (Solver/Affine transfers).
+    bool affine_stored = false;
+
     /// Offset of the initial position (if stored).
     unsigned int
     initial_position() const
@@ -41,10 +47,17 @@ namespace sable::mpm
       return history + n_history;
     }
 
+    /// Offset of the affine velocity gradient C (if stored).
+    unsigned int
+    affine() const
+    {
+      return initial_position() + (initial_position_stored ? dim : 0);
+    }
+
     unsigned int
     n_properties() const
     {
-      return history + n_history + (initial_position_stored ? dim : 0);
+      return affine() + (affine_stored ? dim * dim : 0);
     }
 
     /// Index among the stress components (xx yy zz xy xz yz) of (i, j).
@@ -63,6 +76,28 @@ namespace sable::mpm
         for (unsigned int j = 0; j < dim; ++j)
           F[i][j] = props[deformation + i * dim + j];
       return F;
+    }
+
+    /// Store @p C as the point's affine velocity gradient.
+    template <typename Properties>
+    void
+    set_affine(Properties &props, const dealii::Tensor<2, dim> &C) const
+    {
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          props[affine() + i * dim + j] = C[i][j];
+    }
+
+    /// The point's affine velocity gradient C (if stored).
+    template <typename Properties>
+    dealii::Tensor<2, dim>
+    affine_gradient(const Properties &props) const
+    {
+      dealii::Tensor<2, dim> C;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          C[i][j] = props[affine() + i * dim + j];
+      return C;
     }
 
     /// The full (3 x 3) Cauchy stress.

@@ -40,6 +40,16 @@ namespace sable::mpm
       colouring.reinit(grid, with_ghost_cells);
     }
 
+    /// Whether (and where) the points carry the velocity gradient C of the
+    /// affine transfers: then a point's velocity at node i is
+    /// v_p + C (x_i - x_p), so that an affine velocity field, a rigid spin
+    /// included, reaches the nodes exactly.
+    void
+    set_layout(const ParticleLayout<dim> &particle_layout)
+    {
+      layout = particle_layout;
+    }
+
     /// Scatter every point into @p fields (and @p contact, if not null):
     /// mass and momentum, and in the momentum-update pass internal forces,
     /// mass gradients, stresses and the material extent.
@@ -57,7 +67,8 @@ namespace sable::mpm
     }
 
   private:
-    CellColouring<dim> colouring;
+    CellColouring<dim>  colouring;
+    ParticleLayout<dim> layout;
   };
 } // namespace sable::mpm
 

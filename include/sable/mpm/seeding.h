@@ -13,6 +13,22 @@
 
 namespace sable::mpm
 {
+  /// The gradient of a body's spin velocity omega x (x - c) in the plane
+  /// (2D) or space (3D): the skew tensor a point of the affine transfers
+  /// starts with.
+  template <int dim>
+  inline Tensor<2, dim>
+  spin_velocity_gradient(const Tensor<1, 3> &omega)
+  {
+    // d(omega x r)_i / dr_k = eps_ijk omega_j, eps_ijk = (i-j)(j-k)(k-i)/2
+    Tensor<2, dim> gradient;
+    for (int i = 0; i < dim; ++i)
+      for (int k = 0; k < dim; ++k)
+        for (int j = 0; j < 3; ++j)
+          gradient[i][k] += 0.5 * (i - j) * (j - k) * (k - i) * omega[j];
+    return gradient;
+  }
+
   /**
    * Fill every body with material points (SPEC Part A, initial state):
    * k^dim points per cell at the seeding_point() positions of each locally

@@ -70,12 +70,15 @@ namespace sable::mpm
     }
 
     /// Scatter one particle's share into its body's records at the contact
-    /// nodes of @p shape. Cells of one colour may call this concurrently.
+    /// nodes of @p shape, @p velocities being its velocity as each node
+    /// sees it (ParticleToGrid). Cells of one colour may call this
+    /// concurrently.
     template <GridPass pass>
     void
     scatter(const ArrayView<const double> &   properties,
             const Point<dim> &                location,
             const typename Grid<dim>::Shape &shape,
+            const Tensor<1, dim> *            velocities,
             const Tensor<2, dim> &            volume_stress)
     {
       const unsigned int body = static_cast<unsigned int>(properties[ParticleLayout<dim>::body]);
@@ -92,7 +95,7 @@ namespace sable::mpm
           const double weight = mass * shape.values[v];
           record.mass += weight;
           for (unsigned int d = 0; d < dim; ++d)
-            record.momentum[d] += weight * properties[ParticleLayout<dim>::velocity + d];
+            record.momentum[d] += weight * velocities[v][d];
           if constexpr (pass == GridPass::momentum_update)
             {
               record.force -= volume_stress * shape.gradients[v];
