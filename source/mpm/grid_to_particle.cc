@@ -33,7 +33,49 @@ namespace sable::mpm
   }
 
   template <int dim>
-  template <bool update_positions, bool update_strain_rates>
+  Tensor<2, dim>
+  GridToParticle<dim>::massless_gradient_part(const typename Grid<dim>::Shape &shape,
+                                              const unsigned int               body,
+                                              const MultiBodyContact<dim> *    contact) const
+  {
+    // a node without mass of the point's body has velocity 0 and added
+    // nothing to L; the point adds N m_p to its nodes, so only a node of
+    // weight 0 can be one
+    const std::vector<double> &mass         = fields.get_mass();
+    const std::vector<double> &new_velocity = fields.get_new_velocity();
+    Tensor<1, dim>             massless_gradient;
+    bool                       any_massless = false;
+    for (unsigned int v = 0; v < shape.n_nodes; ++v)
+      if (shape.values[v] == 0.)
+        {
+          const unsigned int node   = shape.nodes[v];
+          const auto *const  record = contact != nullptr ? contact->velocities(node, body) : nullptr;
+          if ((record != nullptr ? record->mass : mass[node]) == 0.)
+            {
+              massless_gradient += shape.gradients[v];
+              any_massless = true;
+            }
+        }
+    if (!any_massless)
+      return Tensor<2, dim>();
+    // such a node moves with the point: sum (v_i - v_p) grad N_i over the
+    // nodes with mass, so that a uniform motion has no gradient
+    Tensor<1, dim> interpolated;
+    for (unsigned int v = 0; v < shape.n_nodes; ++v)
+      {
+        const unsigned int node  = shape.nodes[v];
+        const double *     v_new = &new_velocity[node * dim];
+        if (contact != nullptr)
+          if (const auto *record = contact->velocities(node, body))
+            v_new = &record->new_velocity[0];
+        for (unsigned int d = 0; d < dim; ++d)
+          interpolated[d] += shape.values[v] * v_new[d];
+      }
+    return outer_product(interpolated, massless_gradient);
+  }
+
+  template <int dim>
+  template <bool update_positions, bool update_strain_rates, bool affine>
   typename GridToParticle<dim>::Report
   GridToParticle<dim>::transfer(Particles::ParticleHandler<dim> &particle_handler,
                                 const ParticleCells<dim> &       cells,
@@ -44,8 +86,6 @@ namespace sable::mpm
     using Layout = ParticleLayout<dim>;
     if (update_strain_rates)
       velocity_gradients.resize(particle_handler.get_max_local_particle_index());
-    const bool                 affine       = layout.affine_stored;
-    const std::vector<double> &mass         = fields.get_mass();
     const std::vector<double> &new_velocity = fields.get_new_velocity();
     const std::vector<double> &old_velocity = fields.get_old_velocity();
 
@@ -73,10 +113,6 @@ namespace sable::mpm
                 const bool driven = drivers != nullptr && drivers->is_prescribed(body);
                 Tensor<1, dim> velocity_change, grid_velocity;
                 Tensor<2, dim> L;
-                // the gradients of the nodes without mass of the point's
-                // body (the point lies on their cells' face)
-                Tensor<1, dim> massless_gradient;
-                bool           any_massless = false;
                 if (driven)
                   {
                     // a rigid driver: its velocity, whatever the grid says
@@ -92,25 +128,15 @@ namespace sable::mpm
                 for (unsigned int v = 0; v < (driven ? 0 : shape.n_nodes); ++v)
                   {
                     const unsigned int node  = shape.nodes[v];
-                    const double *     v_new     = &new_velocity[node * dim];
-                    const double *     v_old     = &old_velocity[node * dim];
-                    double             node_mass = mass[node];
+                    const double *     v_new = &new_velocity[node * dim];
+                    const double *     v_old = &old_velocity[node * dim];
                     // each particle reads its own body's field
                     if (contact != nullptr)
                       if (const auto *record = contact->velocities(node, body))
                         {
-                          v_new     = &record->new_velocity[0];
-                          v_old     = &record->old_velocity[0];
-                          node_mass = record->mass;
+                          v_new = &record->new_velocity[0];
+                          v_old = &record->old_velocity[0];
                         }
-                    // a node without mass has no velocity: it only
-                    // completes the gradients' partition of zero, below
-                    if (node_mass == 0.)
-                      {
-                        massless_gradient += shape.gradients[v];
-                        any_massless = true;
-                        continue;
-                      }
                     const double N = shape.values[v];
                     for (unsigned int d = 0; d < dim; ++d)
                       {
@@ -124,24 +150,20 @@ namespace sable::mpm
                             L[d][e] += v_new[d] * shape.gradients[v][e];
                       }
                   }
-                if (update_strain_rates && any_massless)
-                  {
-                    // the massless nodes move with the point (N = 0 there):
-                    // sum (v_i - v_p) grad N_i over the nodes with mass, so
-                    // that a uniform motion has no gradient
-                    Tensor<1, dim> interpolated;
-                    for (unsigned int v = 0; v < shape.n_nodes; ++v)
-                      {
-                        const unsigned int node  = shape.nodes[v];
-                        const double *     v_new = &new_velocity[node * dim];
-                        if (contact != nullptr)
-                          if (const auto *record = contact->velocities(node, body))
-                            v_new = &record->new_velocity[0];
-                        for (unsigned int d = 0; d < dim; ++d)
-                          interpolated[d] += shape.values[v] * v_new[d];
-                      }
-                    L += outer_product(interpolated, massless_gradient);
-                  }
+                // with the affine transfers L becomes C, and a node of
+                // weight 0 without mass next to a point on its cell's face
+                // would carry its velocity 0 into the next transfer with
+                // full weight (a product of weights that underflows only
+                // costs a closer look)
+                if constexpr (update_strain_rates)
+                  if (affine && !driven)
+                    {
+                      double weights = 1.;
+                      for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                        weights *= shape.values[v];
+                      if (weights == 0.)
+                        L += massless_gradient_part(shape, body, contact);
+                    }
                 if constexpr (update_positions)
                   {
                     double speed2 = 0;
@@ -176,7 +198,7 @@ namespace sable::mpm
                     // the affine transfers carry the gradient of the
                     // stress update (MUSL: of the remapped velocities; the
                     // momentum update's are noisy at nodes of little mass)
-                    if (affine)
+                    if constexpr (affine)
                       layout.set_affine(props, L);
                   }
               }
@@ -190,18 +212,23 @@ namespace sable::mpm
 
   template class GridToParticle<2>;
   template class GridToParticle<3>;
-#define SABLE_INSTANTIATE(dim, positions, strain_rates)                                   \
-  template GridToParticle<dim>::Report                                                    \
-  GridToParticle<dim>::transfer<positions, strain_rates>(Particles::ParticleHandler<dim> &, \
-                                                         const ParticleCells<dim> &,      \
-                                                         const MultiBodyContact<dim> *,   \
-                                                         const double,                    \
-                                                         const double) const;
-  SABLE_INSTANTIATE(2, true, false)
-  SABLE_INSTANTIATE(2, false, true)
-  SABLE_INSTANTIATE(2, true, true)
-  SABLE_INSTANTIATE(3, true, false)
-  SABLE_INSTANTIATE(3, false, true)
-  SABLE_INSTANTIATE(3, true, true)
+#define SABLE_INSTANTIATE(dim, positions, strain_rates, affine)                    \
+  template GridToParticle<dim>::Report                                             \
+  GridToParticle<dim>::transfer<positions, strain_rates, affine>(                  \
+    Particles::ParticleHandler<dim> &,                                             \
+    const ParticleCells<dim> &,                                                    \
+    const MultiBodyContact<dim> *,                                                 \
+    const double,                                                                  \
+    const double) const;
+  SABLE_INSTANTIATE(2, true, false, false)
+  SABLE_INSTANTIATE(2, false, true, false)
+  SABLE_INSTANTIATE(2, false, true, true)
+  SABLE_INSTANTIATE(2, true, true, false)
+  SABLE_INSTANTIATE(2, true, true, true)
+  SABLE_INSTANTIATE(3, true, false, false)
+  SABLE_INSTANTIATE(3, false, true, false)
+  SABLE_INSTANTIATE(3, false, true, true)
+  SABLE_INSTANTIATE(3, true, true, false)
+  SABLE_INSTANTIATE(3, true, true, true)
 #undef SABLE_INSTANTIATE
 } // namespace sable::mpm

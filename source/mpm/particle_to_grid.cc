@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace sable::mpm
 {
@@ -27,7 +28,7 @@ namespace sable::mpm
     const auto add_to_single_field = [&](const auto &                     particle,
                                          const ArrayView<const double> &  props,
                                          const typename Grid<dim>::Shape &shape,
-                                         const Tensor<1, dim> *           velocities,
+                                         const auto &                     velocity_at,
                                          const Tensor<2, dim> &           volume_stress) {
       const double mass = props[Layout::mass];
       if (extent != nullptr)
@@ -66,7 +67,7 @@ namespace sable::mpm
           const double  weight = mass * shape.values[v];
           node[0] += weight;
           for (unsigned int d = 0; d < dim; ++d)
-            node[1 + d] += weight * velocities[v][d];
+            node[1 + d] += weight * velocity_at(v, d);
           if constexpr (momentum_update)
             {
               const Tensor<1, dim> force = -(volume_stress * shape.gradients[v]);
@@ -76,33 +77,13 @@ namespace sable::mpm
         }
     };
 
-    // the point's velocity as each node of @p shape sees it: v_p, or
-    // v_p + C (x_i - x_p) with the affine transfers
+    // the cell worker; with the affine transfers (@p affine true) a point's
+    // velocity at node i is v_p + C (x_i - x_p), kept in @p velocities
     const std::vector<Point<dim>> &node_positions = grid.node_positions();
-    const auto velocities_at_nodes = [&](const auto &                     particle,
-                                         const ArrayView<const double> &  props,
-                                         const typename Grid<dim>::Shape &shape,
-                                         Tensor<1, dim> *                 velocities) {
-      Tensor<1, dim> velocity;
-      for (unsigned int d = 0; d < dim; ++d)
-        velocity[d] = props[Layout::velocity + d];
-      if (!layout.affine_stored)
-        {
-          for (unsigned int v = 0; v < shape.n_nodes; ++v)
-            velocities[v] = velocity;
-          return;
-        }
-      const Tensor<2, dim> C = layout.affine_gradient(props);
-      for (unsigned int v = 0; v < shape.n_nodes; ++v)
-        velocities[v] =
-          velocity +
-          C * (node_positions[shape.nodes[v]] - shape.image_for_node(particle.get_location(), v));
-    };
-
-    // the cell worker
     const auto scatter_cell = [&](const typename ParticleCells<dim>::Cell &cell,
                                   typename Grid<dim>::Shape &              shape,
-                                  Tensor<1, dim> *                         velocities) {
+                                  Tensor<1, dim> *                         velocities,
+                                  const auto                               affine) {
       const bool near_contact = contact != nullptr && contact->touches(grid.cell_nodes(*cell.data));
       if (!cell.owned && !near_contact)
         return;
@@ -115,12 +96,30 @@ namespace sable::mpm
                         shape);
           const Tensor<2, dim>          volume_stress =
             momentum_update ? Layout::volume_stress(props) : Tensor<2, dim>();
-          velocities_at_nodes(particle, props, shape, velocities);
-          if (near_contact)
-            contact->template scatter<pass>(
-              props, particle.get_location(), shape, velocities, volume_stress);
-          if (cell.owned)
-            add_to_single_field(particle, props, shape, velocities, volume_stress);
+          const auto scatter_point = [&](const auto &velocity_at) {
+            if (near_contact)
+              contact->template scatter<pass>(
+                props, particle.get_location(), shape, velocity_at, volume_stress);
+            if (cell.owned)
+              add_to_single_field(particle, props, shape, velocity_at, volume_stress);
+          };
+          if constexpr (decltype(affine)::value)
+            {
+              const Tensor<2, dim> C = layout.affine_gradient(props);
+              for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                for (unsigned int d = 0; d < dim; ++d)
+                  velocities[v][d] =
+                    props[Layout::velocity + d] +
+                    C[d] * (node_positions[shape.nodes[v]] -
+                            shape.image_for_node(particle.get_location(), v));
+              scatter_point([velocities](const unsigned int v, const unsigned int d) {
+                return velocities[v][d];
+              });
+            }
+          else
+            scatter_point([&props](const unsigned int, const unsigned int d) {
+              return props[Layout::velocity + d];
+            });
         }
     };
 
@@ -129,8 +128,12 @@ namespace sable::mpm
       // point's velocity as each of their nodes sees it
       typename Grid<dim>::Shape                                  shape;
       std::array<Tensor<1, dim>, Grid<dim>::max_nodes_per_cell> velocities;
-      for (const unsigned int *c = begin; c != end; ++c)
-        scatter_cell(cells[*c], shape, velocities.data());
+      if (layout.affine_stored)
+        for (const unsigned int *c = begin; c != end; ++c)
+          scatter_cell(cells[*c], shape, velocities.data(), std::true_type());
+      else
+        for (const unsigned int *c = begin; c != end; ++c)
+          scatter_cell(cells[*c], shape, velocities.data(), std::false_type());
     });
     fields.template compress<pass>();
   }

@@ -6,8 +6,9 @@
 # under gravity, 2D, MUSL, one thread, output off, 20 steps (or the number
 # given). Variants: the defaults, each contact option changed alone, the
 # disks seeded conforming, the floor a friction wall (either contact
-# criterion), and contact 'none' (one velocity field: the single-field
-# step).
+# criterion), the GIMP functions (with MUSL, with USL, with USL and the
+# affine transfers), and contact 'none' (one velocity field: the
+# single-field step).
 # Prints the instructions of Simulator::advance() (the steps) per variant
 # and its ratio to the default.
 # Usage: contrib/benchmarks/contact_options/callgrind.sh [build dir] [steps]
@@ -19,7 +20,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 source "$root/contrib/benchmarks/callgrind_functions.sh"
 
-scene() { # contact entries, body entries, boundary entries
+scene() { # contact entries, body entries, boundary entries, other entries
   cat <<PRM
 set Dimension = 2
 set Output directory = $work/out
@@ -46,6 +47,7 @@ subsection Contact
   set Friction coefficient = 0.3
 $1
 end
+$4
 PRM
   for i in $(seq 0 63); do
     printf 'subsection Body %d\n  set Shape = disk\n  set Radius = 0.05\n' "$i"
@@ -63,11 +65,15 @@ variants=("defaults|"
           "Seeding = conforming||  set Seeding = conforming"
           "floor: friction wall, surface position|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3"
           "floor: friction wall, material|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3\n  set Friction wall contact = material"
+          "Shape functions = gimp|||| subsection Grid\n  set Shape functions = gimp\nend"
+          "Shape functions = gimp, Update scheme = USL|||| subsection Grid\n  set Shape functions = gimp\nend\nsubsection Solver\n  set Update scheme = USL\nend"
+          "Shape functions = gimp, Update scheme = USL, Affine transfers|||| subsection Grid\n  set Shape functions = gimp\nend\nsubsection Solver\n  set Update scheme = USL\n  set Affine transfers = true\nend"
           "Model = none (single field)|  set Model = none")
 reference=0
 for variant in "${variants[@]}"; do
-  IFS='|' read -r name contact_entries body_entries boundary_entries <<< "$variant"
-  scene "$contact_entries" "$body_entries" "$(printf '%b' "$boundary_entries")" > "$work/scene.prm"
+  IFS='|' read -r name contact_entries body_entries boundary_entries other_entries <<< "$variant"
+  scene "$contact_entries" "$body_entries" "$(printf '%b' "$boundary_entries")" \
+    "$(printf '%b' "$other_entries")" > "$work/scene.prm"
   rm -rf "$work/out"
   callgrind_run "$work/callgrind.out" "$work/log" "$build/sable" "$work/scene.prm" ||
     { echo "$name: $(grep -m1 'sable:' "$work/log")"; continue; }

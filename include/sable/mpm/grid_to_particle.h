@@ -21,10 +21,11 @@ namespace sable::mpm
    * field elsewhere) and updates its velocity (FLIP with a PIC fraction)
    * and position, or stores its velocity gradient L = sum v_i grad N_i for
    * the stress update, or both in one pass (USL). Each point changes only
-   * its own data, so threads change nothing. A node without mass of the
-   * point's body (the point on its cell's face: N = 0, grad N != 0) has
-   * no velocity; it enters L as if it moved with the point, so that a
-   * uniform motion has no gradient.
+   * its own data, so threads change nothing. With the affine transfers a
+   * node without mass of the point's body (the point on its cell's face:
+   * N = 0, grad N != 0) enters L as if it moved with the point, so that a
+   * uniform motion has no gradient: L becomes the point's C, which the
+   * next transfer applies with full weight.
    */
   template <int dim>
   class GridToParticle
@@ -86,7 +87,8 @@ namespace sable::mpm
                                     const double                     time_step,
                                     const double                     pic_fraction) const
     {
-      return transfer<true, false>(particle_handler, cells, contact, time_step, pic_fraction);
+      return transfer<true, false, false>(
+        particle_handler, cells, contact, time_step, pic_fraction);
     }
 
     /// The velocity gradients of the strain update (by local index).
@@ -95,7 +97,9 @@ namespace sable::mpm
                          const ParticleCells<dim> &       cells,
                          const MultiBodyContact<dim> *    contact) const
     {
-      return transfer<false, true>(particle_handler, cells, contact, 0., 0.);
+      return layout.affine_stored ?
+               transfer<false, true, true>(particle_handler, cells, contact, 0., 0.) :
+               transfer<false, true, false>(particle_handler, cells, contact, 0., 0.);
     }
 
     /// Both in one pass, from the same nodal velocities (USL).
@@ -106,11 +110,25 @@ namespace sable::mpm
                                       const double                     time_step,
                                       const double                     pic_fraction) const
     {
-      return transfer<true, true>(particle_handler, cells, contact, time_step, pic_fraction);
+      return layout.affine_stored ?
+               transfer<true, true, true>(
+                 particle_handler, cells, contact, time_step, pic_fraction) :
+               transfer<true, true, false>(
+                 particle_handler, cells, contact, time_step, pic_fraction);
     }
 
   private:
-    template <bool update_positions, bool update_strain_rates>
+    /// The part of a point's velocity gradient (of @p body, with @p shape)
+    /// from the nodes without mass of its body, as if they moved with the
+    /// point (they added nothing to sum v_i grad N_i, their velocity being
+    /// 0).
+    Tensor<2, dim>
+    massless_gradient_part(const typename Grid<dim>::Shape &shape,
+                           const unsigned int               body,
+                           const MultiBodyContact<dim> *    contact) const;
+
+    /// @p affine: store each point's C = L (the affine transfers).
+    template <bool update_positions, bool update_strain_rates, bool affine>
     Report
     transfer(Particles::ParticleHandler<dim> &particle_handler,
              const ParticleCells<dim> &       cells,

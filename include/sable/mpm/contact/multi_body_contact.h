@@ -70,15 +70,15 @@ namespace sable::mpm
     }
 
     /// Scatter one particle's share into its body's records at the contact
-    /// nodes of @p shape, @p velocities being its velocity as each node
-    /// sees it (ParticleToGrid). Cells of one colour may call this
-    /// concurrently.
-    template <GridPass pass>
+    /// nodes of @p shape, component d of its velocity as node v sees it
+    /// being velocity_at(v, d) (ParticleToGrid). Cells of one colour may
+    /// call this concurrently.
+    template <GridPass pass, typename VelocityAt>
     void
     scatter(const ArrayView<const double> &   properties,
             const Point<dim> &                location,
             const typename Grid<dim>::Shape &shape,
-            const Tensor<1, dim> *            velocities,
+            const VelocityAt &                velocity_at,
             const Tensor<2, dim> &            volume_stress)
     {
       const unsigned int body = static_cast<unsigned int>(properties[ParticleLayout<dim>::body]);
@@ -95,7 +95,7 @@ namespace sable::mpm
           const double weight = mass * shape.values[v];
           record.mass += weight;
           for (unsigned int d = 0; d < dim; ++d)
-            record.momentum[d] += weight * velocities[v][d];
+            record.momentum[d] += weight * velocity_at(v, d);
           if constexpr (pass == GridPass::momentum_update)
             {
               record.force -= volume_stress * shape.gradients[v];
