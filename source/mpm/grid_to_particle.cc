@@ -195,9 +195,8 @@ namespace sable::mpm
                 if constexpr (update_strain_rates)
                   {
                     velocity_gradients[particle.get_local_index()] = L;
-                    // the affine transfers carry the gradient of the
-                    // stress update (MUSL: of the remapped velocities; the
-                    // momentum update's are noisy at nodes of little mass)
+                    // the affine transfers carry the velocity gradient
+                    // of the stress update into the next step as C
                     if constexpr (affine)
                       layout.set_affine(props, L);
                   }
