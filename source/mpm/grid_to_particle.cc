@@ -39,35 +39,21 @@ namespace sable::mpm
                                               const MultiBodyContact<dim> *    contact) const
   {
     // a node without mass of the point's body has velocity 0 and added
-    // nothing to L; the point adds N m_p to its nodes, so only a node of
-    // weight 0 can be one
+    // nothing to L (the point adds N m_p to its nodes, so only a node of
+    // weight 0 can be one); moving with the point, it adds v_p grad N_i,
+    // so that L = sum (v_i - v_p) grad N_i over the nodes with mass and a
+    // uniform motion has no gradient
     const std::vector<double> &mass         = fields.get_mass();
     const std::vector<double> &new_velocity = fields.get_new_velocity();
-    Tensor<1, dim>             massless_gradient;
-    bool                       any_massless = false;
-    for (unsigned int v = 0; v < shape.n_nodes; ++v)
-      if (shape.values[v] == 0.)
-        {
-          const unsigned int node   = shape.nodes[v];
-          const auto *const  record = contact != nullptr ? contact->velocities(node, body) : nullptr;
-          if ((record != nullptr ? record->mass : mass[node]) == 0.)
-            {
-              massless_gradient += shape.gradients[v];
-              any_massless = true;
-            }
-        }
-    if (!any_massless)
-      return Tensor<2, dim>();
-    // such a node moves with the point: sum (v_i - v_p) grad N_i over the
-    // nodes with mass, so that a uniform motion has no gradient
-    Tensor<1, dim> interpolated;
+    Tensor<1, dim>             massless_gradient, interpolated;
     for (unsigned int v = 0; v < shape.n_nodes; ++v)
       {
-        const unsigned int node  = shape.nodes[v];
-        const double *     v_new = &new_velocity[node * dim];
-        if (contact != nullptr)
-          if (const auto *record = contact->velocities(node, body))
-            v_new = &record->new_velocity[0];
+        const unsigned int node   = shape.nodes[v];
+        const auto *const  record = contact != nullptr ? contact->velocities(node, body) : nullptr;
+        const double *const v_new =
+          record != nullptr ? &record->new_velocity[0] : &new_velocity[node * dim];
+        if (shape.values[v] == 0. && (record != nullptr ? record->mass : mass[node]) == 0.)
+          massless_gradient += shape.gradients[v];
         for (unsigned int d = 0; d < dim; ++d)
           interpolated[d] += shape.values[v] * v_new[d];
       }
