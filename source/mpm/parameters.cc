@@ -114,6 +114,17 @@ namespace sable::mpm
                       "down on a support do not drop and bounce. 0: start as "
                       "seeded. A run that has not settled within the steps "
                       "stops with a message.");
+    prm.declare_entry("Settling gravity",
+                      "",
+                      Patterns::Anything(),
+                      "Gravitational acceleration while the bodies settle, "
+                      "m/s^2 (dim comma-separated numbers); empty: the "
+                      "scene's Gravity. A body on a slope that slides or "
+                      "rolls under the scene's gravity never settles: settle "
+                      "it under the part of gravity normal to the slope (for "
+                      "Gravity = g sin(theta), -g cos(theta): 0, -g "
+                      "cos(theta)), and the scene's Gravity acts from time 0. "
+                      "Used only with Settling steps > 0.");
     prm.declare_entry("Settling tolerance",
                       "1e-8",
                       Patterns::Double(0),
@@ -310,6 +321,7 @@ namespace sable::mpm
                                                "Time/CFL number",
                                                "Solver/Balance particles across ranks",
                                                "Solver/Settling steps",
+                                               "Solver/Settling gravity",
                                                "Solver/Settling tolerance"};
     return free.count(name) > 0 || (name.rfind("Output/", 0) == 0 && name != "Output/Output format" &&
                                     name != "Output/Displacement output");
@@ -401,6 +413,9 @@ namespace sable::mpm
     p.balance_particles = prm.get_bool("Balance particles across ranks");
     p.settling_steps    = prm.get_integer("Settling steps");
     p.settling_tolerance = prm.get_double("Settling tolerance");
+    p.settling_gravity   = prm.get("Settling gravity").empty() ?
+                             p.gravity :
+                             read_vector<dim>(prm, "Settling gravity", "Solver/");
     prm.leave_subsection();
 
     GridParameters<dim> &grid = scene.grid;

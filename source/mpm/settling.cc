@@ -32,6 +32,9 @@ namespace sable::mpm
     // rings on, and a contact held by friction near its limit slips where
     // the ringing adds to the load: the tolerance is relative to the
     // stored energy, which sets the forces, not to the mass and the cell
+    // the settling gravity acts in every pass until the clock starts
+    const Tensor<1, dim> run_gravity = parameters.gravity;
+    parameters.gravity               = parameters.settling_gravity;
     double       previous = 0, kinetic = 0, peak = std::numeric_limits<double>::max();
     double       strain_energy = 0;
     unsigned int n             = 0;
@@ -68,7 +71,8 @@ namespace sable::mpm
         else
           previous = kinetic;
       }
-    settling = false;
+    settling           = false;
+    parameters.gravity = run_gravity;
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
                 parameters.settling_steps,
@@ -80,7 +84,8 @@ namespace sable::mpm
                        std::to_string(strain_energy) + " J" :
                      "the kinetic energy was still rising, " + std::to_string(kinetic) + " J") +
                   "; a body free to slide or roll under the gravity, such as a disk "
-                  "on a slope, never settles)");
+                  "on a slope, never settles: settle it under the part of gravity normal "
+                  "to the slope, 'Solver/Settling gravity')");
     pcout << "Settled under gravity in " << n + 1 << " steps (" << state.time
           << " s of damped motion)" << std::endl;
 

@@ -23,6 +23,8 @@ cases = [
     ("cfl_large", {"Time/CFL number": 1.5}, {}, ["CFL number", "1.5", "(0, 1]"]),
     ("settling_tolerance", {"Solver/Settling steps": 100, "Solver/Settling tolerance": 1},
      {}, ["Settling tolerance", "1", "(0, 1)"]),
+    ("settling_gravity", {"Solver/Settling steps": 100, "Solver/Settling gravity": "-9.81"},
+     {}, ["Solver/Settling gravity", "-9.81", "2 comma-separated numbers"]),
     ("ppc_zero", {}, {"Particles per cell direction": 0}, ["Particles per cell direction", "0", "1..4"]),
     ("ppc_five", {}, {"Particles per cell direction": 5}, ["Particles per cell direction", "5", "1..4"]),
     ("body_outside", {}, {"Center": "0.9, 0.5"}, ["Body 0/Center", "0.9, 0.5", "inside the grid"]),

@@ -77,6 +77,9 @@ namespace sable::mpm
     /// Settled when a peak of the kinetic energy is below this fraction of
     /// the strain energy (Solver/Settling tolerance).
     double settling_tolerance = 1e-8;
+    /// The gravity while settling: the scene's unless given (Solver/Settling
+    /// gravity), e.g. its part normal to a slope a body would slide down.
+    Tensor<1, dim> settling_gravity = {};
 
     /// Grid/Shape functions: linear, or GIMP on a uniform grid on one rank.
     ShapeFunctions shape_functions = ShapeFunctions::linear;
