@@ -132,6 +132,8 @@ namespace sable::mpm
         model.momentum_correction = 0;
         for (auto &force : model.pair_forces)
           force = 0;
+        for (auto &moment : model.pair_moments)
+          moment = 0;
       }
   }
 

@@ -208,6 +208,7 @@ namespace sable::mpm
       contact != nullptr,
       prescribed_velocities.any(),
       parameters.contact.reported_pairs,
+      !grid.periodicity().any(),
       write && Utilities::MPI::this_mpi_process(communicator) == 0,
       append,
       communicator);
@@ -659,7 +660,8 @@ namespace sable::mpm
                                                        materials,
                                                        parameters.gravity,
                                                        contact ? &contact->get_model() : nullptr,
-                                                       grid.periodicity());
+                                                       grid.periodicity(),
+                                                       state.time_step);
     s.wall_heat    = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
     for (unsigned int d = 0; d < dim; ++d)
       s.driver_impulse[d] = state.driver_impulse[d];

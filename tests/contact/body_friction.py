@@ -32,7 +32,9 @@
    30 deg, mu = 0.5 (x = g sin theta t^2 / 3; measured +0.2%) and at 45 deg,
    0.6 (-0.0%), sliding at 45 deg, 0.2 (x = g (sin - mu cos) t^2 / 2;
    +0.1%, spinning at 0.48 of the rigid omega R / v = 2 mu cos / (sin - mu
-   cos) = 0.5, checked within 10%). Seeded on the lattice the same disk
+   cos) = 0.5, checked within 10%; the contact's moment on it about its
+   centre, column contact0_1_mb, within 3% of the friction force times its
+   arm to the plane's surface, measured 1.002). Seeded on the lattice the same disk
    lags 8.3%, 4.9% and 4.6%: the lattice's staircase edge meets the plane
    a cell ahead of the contact point and the disk hops over it.
 4. The rolling disks of 3. at 8 cells per diameter: with the defaults they
@@ -156,7 +158,8 @@ def travel(rows, theta, mu):
 
 
 for theta, mu in [(30, 0.5), (45, 0.6), (45, 0.2)]:
-    rows = roll(f"roll_{theta}_{mu}", theta, mu)
+    rows = roll(f"roll_{theta}_{mu}", theta, mu, scheme={"Contact/Reported pairs": "0-1",
+                                                          "Output/Statistics interval": 5})
     x, rolls = travel(rows, theta, mu)
     s_, c_ = math.sin(math.radians(theta)), math.cos(math.radians(theta))
     what = f"disk on a plane body, theta = {theta}, mu = {mu} ({'rolls' if rolls else 'slides'})"
@@ -166,6 +169,16 @@ for theta, mu in [(30, 0.5), (45, 0.6), (45, 0.2)]:
         rigid_spin = 2 * mu * c_ / (s_ - mu * c_)
         check(f"{what}: spin omega R / v within 10% of the rigid {rigid_spin:.3f}",
               abs(spin / rigid_spin - 1) <= 0.1, f"{spin:.3f}")
+        # the contact's moment on the disk about its centre (column
+        # contact0_1_mb) is the friction's: the force on the disk, -f, acts
+        # at the plane's surface, y = 0.1, and its normal part through the
+        # centre; averaged over the rows from 0.05 s (each row holds one
+        # step's force)
+        sliding = [r for r in rows if r["time"] >= 0.05]
+        moment = sum(r["contact0_1_mb"] for r in sliding)
+        friction = sum((r["body1_y"] - 0.1) * -r["contact0_1_fx"] for r in sliding)
+        check(f"{what}: the contact moment on the disk within 3% of its friction times the arm",
+              abs(moment / friction - 1) <= 0.03, f"moment / (friction x arm) = {moment / friction:.4f}")
 
 # 8 cells per diameter: the defaults lag, the affine transfers roll
 affine = {"Grid/Shape functions": "gimp", "Solver/Update scheme": "USL", "Solver/Affine transfers": "true"}

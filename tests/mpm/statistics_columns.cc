@@ -27,7 +27,7 @@ namespace
     const std::string label = std::to_string(dim) + "D: ";
     const double      nan   = std::numeric_limits<double>::quiet_NaN();
     // two bodies, contact, one reported pair; nothing written
-    const StatisticsFile<dim> file("unused.csv", {0, 1}, true, false, {{0, 1}}, false);
+    const StatisticsFile<dim> file("unused.csv", {0, 1}, true, false, {{0, 1}}, true, false);
     Statistics<dim>           s;
     s.energy_drift          = 0.;
     s.body_mass             = {1., 2.};
@@ -35,6 +35,7 @@ namespace
     s.body_velocity         = {Tensor<1, dim>(), Tensor<1, dim>()};
     s.body_angular_velocity = {Tensor<1, 3>(), Tensor<1, 3>()};
     s.pair_forces           = {Tensor<1, dim>()};
+    s.pair_moments          = {{{Tensor<1, 3>(), Tensor<1, 3>()}}};
     const auto first = [&](const Statistics<dim> &row) {
       return file.first_not_finite(10, 0.5, 1e-3, 0., row);
     };
@@ -43,6 +44,10 @@ namespace
     Statistics<dim> t = s;
     t.pair_forces[0][1] = nan;
     check(label + "NaN pair force named (" + first(t) + ")", first(t) == "contact0_1_fy");
+    t = s;
+    t.pair_moments[0][1][2] = nan;
+    const std::string moment = dim == 2 ? "contact0_1_mb" : "contact0_1_mb_z";
+    check(label + "NaN pair moment named (" + first(t) + ")", first(t) == moment);
     t = s;
     t.contact_heat = std::numeric_limits<double>::infinity();
     check(label + "infinite contact heat named (" + first(t) + ")", first(t) == "contact_heat");

@@ -22,6 +22,7 @@ namespace sable::mpm
   {
     const unsigned int n = body_groups.size();
     pair_forces.assign(parameters.reported_pairs.size(), Tensor<1, dim>());
+    pair_moments.assign(parameters.reported_pairs.size(), Tensor<1, 3>());
     // a dense table is fine for the few bodies whose pairs are reported;
     // with many bodies and no reported pairs it stays empty
     if (!parameters.reported_pairs.empty())
@@ -52,7 +53,8 @@ namespace sable::mpm
                                  const double                       dt,
                                  const unsigned int                 n_owned_nodes,
                                  const bool                         record_forces,
-                                 const MPI_Comm                     communicator)
+                                 const MPI_Comm                     communicator,
+                                 const std::vector<Point<dim>> *    node_positions)
   {
     // Each node changes only its own records, so the chunks of nodes run in
     // parallel; what each node adds to the sums is kept and added node by
@@ -91,19 +93,42 @@ namespace sable::mpm
       }
 
     if (record_forces)
-      for (auto &f : pair_forces)
-        f = 0;
+      {
+        for (auto &f : pair_forces)
+          f = 0;
+        for (auto &m : pair_moments)
+          m = 0;
+      }
     const unsigned int n_reported = pair_forces.size();
-    for (const ChunkResults &results : chunk_results)
-      for (unsigned int i = 0; i < results.node_totals.size(); ++i)
-        {
-          frictional_heat += results.node_totals[i].frictional_heat;
-          momentum_defect += results.node_totals[i].momentum_defect;
-          momentum_correction += results.node_totals[i].momentum_correction;
-          if (record_forces)
+    for (unsigned int chunk = 0; chunk < n_chunks; ++chunk)
+      {
+        const ChunkResults &results = chunk_results[chunk];
+        for (unsigned int i = 0; i < results.node_totals.size(); ++i)
+          {
+            frictional_heat += results.node_totals[i].frictional_heat;
+            momentum_defect += results.node_totals[i].momentum_defect;
+            momentum_correction += results.node_totals[i].momentum_correction;
+            if (!record_forces)
+              continue;
             for (unsigned int p = 0; p < n_reported; ++p)
-              pair_forces[p] += results.node_pair_forces[i * n_reported + p];
-        }
+              {
+                const Tensor<1, dim> &force = results.node_pair_forces[i * n_reported + p];
+                pair_forces[p] += force;
+                if (node_positions != nullptr)
+                  {
+                    const Point<dim> &x =
+                      (*node_positions)[fields.get_contact_nodes()[chunk * chunk_size + i]];
+                    Tensor<1, 3> x3, f3;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        x3[d] = x[d];
+                        f3[d] = force[d];
+                      }
+                    pair_moments[p] += cross_product_3d(x3, f3);
+                  }
+              }
+          }
+      }
   }
 
   template <int dim>

@@ -94,7 +94,8 @@ namespace sable::mpm
     prm.declare_entry("Reported pairs",
                       "all",
                       Patterns::Anything(),
-                      "Body pairs whose total contact force goes to "
+                      "Body pairs whose total contact force, and its "
+                      "moments about the two bodies' centres of mass, go to "
                       "statistics.csv, e.g. '0-1, 1-2'; 'all' (every pair "
                       "when there are at most 4 bodies) or 'none'.");
   }

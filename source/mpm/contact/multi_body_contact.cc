@@ -200,7 +200,10 @@ namespace sable::mpm
                   time_step,
                   n_owned_nodes,
                   momentum_update,
-                  grid.triangulation.get_communicator());
+                  grid.triangulation.get_communicator(),
+                  // a moment about the origin means nothing across a
+                  // periodic seam
+                  grid.periodicity().any() ? nullptr : &grid.node_positions());
     if (drivers)
       hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())

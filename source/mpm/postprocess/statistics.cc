@@ -18,6 +18,7 @@ namespace sable::mpm
     const bool                                                with_contact,
     const bool                                                with_drivers,
     const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+    const bool                                                with_pair_moments,
     const bool                                                write,
     const bool                                                append,
     MPI_Comm                                                  communicator)
@@ -70,10 +71,23 @@ namespace sable::mpm
       {
         add("contact_heat", [](const Row &r) { return r.statistics.contact_heat; });
         for (unsigned int i = 0; i < pairs.size(); ++i)
-          for (unsigned int d = 0; d < dim; ++d)
-            add("contact" + std::to_string(pairs[i].first) + "_" +
-                  std::to_string(pairs[i].second) + "_f" + axes.substr(d, 1),
-                [i, d](const Row &r) { return r.statistics.pair_forces[i][d]; });
+          {
+            const std::string pair =
+              "contact" + std::to_string(pairs[i].first) + "_" + std::to_string(pairs[i].second);
+            for (unsigned int d = 0; d < dim; ++d)
+              add(pair + "_f" + axes.substr(d, 1),
+                  [i, d](const Row &r) { return r.statistics.pair_forces[i][d]; });
+            // the moments on the first (a) and the second (b) body, each
+            // about its centre of mass; 2D: about z only
+            if (with_pair_moments)
+              for (unsigned int body = 0; body < 2; ++body)
+                for (unsigned int d = (dim == 2 ? 2 : 0); d < 3; ++d)
+                  add(pair + "_m" + (body == 0 ? "a" : "b") +
+                        (dim == 2 ? "" : "_" + axes.substr(d, 1)),
+                      [i, body, d](const Row &r) {
+                        return r.statistics.pair_moments[i][body][d];
+                      });
+          }
       }
 
     if (!write)
@@ -179,7 +193,8 @@ namespace sable::mpm
                      const std::vector<std::unique_ptr<Material>> &materials,
                      const Tensor<1, dim> &                        gravity,
                      const BardenhagenContact<dim> *               contact,
-                     const Periodicity<dim> &                      periodicity)
+                     const Periodicity<dim> &                      periodicity,
+                     const double                                  time_step)
   {
     const bool periodic = periodicity.any();
     const MPI_Comm communicator = triangulation.get_communicator();
@@ -283,6 +298,26 @@ namespace sable::mpm
         s.contact_heat = Utilities::MPI::sum(contact->frictional_heat, communicator);
         for (const auto &force : contact->pair_forces)
           s.pair_forces.push_back(Utilities::MPI::sum(force, communicator));
+        // M_a = sum (x_i - x_a) x f_i = M_O - x_a x F on the first body,
+        // and -(M_O - x_b x F) on the second, about where the centres were
+        // when the forces acted: a step of @p time_step before, less the
+        // step's move (the mean of the points' moves is the body's
+        // velocity times the step, as the transfers keep momentum)
+        if (!periodic)
+          for (unsigned int i = 0; i < contact->pair_moments.size(); ++i)
+            {
+              const Tensor<1, 3> moment = Utilities::MPI::sum(contact->pair_moments[i], communicator);
+              const auto [a, b]         = contact->get_reported_pairs()[i];
+              Tensor<1, 3> force, x_a, x_b;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  force[d] = s.pair_forces[i][d];
+                  x_a[d]   = s.body_position[a][d] - time_step * s.body_velocity[a][d];
+                  x_b[d]   = s.body_position[b][d] - time_step * s.body_velocity[b][d];
+                }
+              s.pair_moments.push_back({{moment - cross_product_3d(x_a, force),
+                                         -(moment - cross_product_3d(x_b, force))}});
+            }
       }
     return s;
   }
@@ -295,7 +330,8 @@ namespace sable::mpm
                                                    const std::vector<std::unique_ptr<Material>> &, \
                                                    const Tensor<1, dim> &,                  \
                                                    const BardenhagenContact<dim> *,         \
-                                                   const Periodicity<dim> &);
+                                                   const Periodicity<dim> &,                \
+                                                   const double);
   SABLE_INSTANTIATE(2)
   SABLE_INSTANTIATE(3)
 #undef SABLE_INSTANTIATE

@@ -53,6 +53,7 @@ namespace sable::mpm
      * reach the particles) frictional heat, pair forces and the output
      * fields of the records are accumulated, for nodes below
      * @p n_owned_nodes only, so that sums over ranks count each node once.
+     * With @p node_positions also the reported pairs' moments.
      */
     void
     apply(BodyFields<dim> &                  fields,
@@ -60,7 +61,8 @@ namespace sable::mpm
           const double                       dt,
           const unsigned int                 n_owned_nodes,
           const bool                         record_forces,
-          const MPI_Comm                     communicator = MPI_COMM_SELF);
+          const MPI_Comm                     communicator   = MPI_COMM_SELF,
+          const std::vector<Point<dim>> *    node_positions = nullptr);
 
     /// Frictional work converted to heat so far (this rank's nodes;
     /// Statistics::contact_heat): the friction impulses times the slip the
@@ -86,6 +88,17 @@ namespace sable::mpm
     /// Contact force on the first body of each reported pair from the
     /// second, in the last momentum-update pass (this rank's nodes).
     std::vector<Tensor<1, dim>> pair_forces;
+    /// Their moment about the origin, sum over the nodes of x_i x f_i (3
+    /// components; in 2D only z), in the same pass; zero unless apply() was
+    /// given the node positions.
+    std::vector<Tensor<1, 3>> pair_moments;
+
+    /// The pairs of pair_forces, (a, b) with a < b.
+    const std::vector<std::pair<unsigned int, unsigned int>> &
+    get_reported_pairs() const
+    {
+      return parameters.reported_pairs;
+    }
 
   private:
     /// The normal impulse (compressive > 0) and the friction impulse one

@@ -10,6 +10,7 @@
 #include <sable/mpm/particle_layout.h>
 #include <sable/mpm/periodicity.h>
 
+#include <array>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -60,6 +61,11 @@ namespace sable::mpm
     /// per reported pair (empty without contact)
     double                      contact_heat = 0;
     std::vector<Tensor<1, dim>> pair_forces;
+    /// per reported pair, the moment of that contact force on its first
+    /// body about the body's centre of mass, and of the opposite force on
+    /// the second body about its centre of mass (3 components; 2D: z
+    /// only); empty on a periodic grid
+    std::vector<std::array<Tensor<1, 3>, 2>> pair_moments;
   };
 
   /**
@@ -80,6 +86,7 @@ namespace sable::mpm
                    const bool         with_contact,
                    const bool         with_drivers,
                    const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+                   const bool         with_pair_moments,
                    const bool         write,
                    const bool         append       = false,
                    MPI_Comm           communicator = MPI_COMM_SELF);
@@ -128,7 +135,10 @@ namespace sable::mpm
   /**
    * Energies, momentum and per-body centre of mass, velocity and angular
    * velocity of the material points over all ranks (collective), and, with
-   * @p contact, its frictional heat and reported pair forces.
+   * @p contact, its frictional heat and reported pair forces, with their
+   * moments about the bodies' centres of mass unless the grid is periodic
+   * (the forces of the last step, @p time_step long: about the centres
+   * where they were at its start).
    *
    * On a periodic grid a body's points count at their images nearest to
    * the body's circular mean position along each periodic axis, so that the
@@ -143,7 +153,8 @@ namespace sable::mpm
                      const std::vector<std::unique_ptr<Material>> &materials,
                      const Tensor<1, dim> &                        gravity,
                      const BardenhagenContact<dim> *               contact,
-                     const Periodicity<dim> &                      periodicity);
+                     const Periodicity<dim> &                      periodicity,
+                     const double                                  time_step = 0);
 } // namespace sable::mpm
 
 #endif
