@@ -13,7 +13,10 @@ Cases (scene files in prm/, written at cell R/4):
 A2 runs at cells R/2, R/4, R/8, A3 at R/4 and R/8 (`--resolutions` limits
 the set). Each run compares the sphere's centre of mass (body0_x, body0_vx
 of statistics.csv, every step) with the rigid solution and writes the final
-particle state once, from which the sphere's spin omega R / v_cm is taken.
+particle state once, from which the sphere's spin omega R / v_cm is taken,
+and prints the contact moment on the sphere over the friction's moment
+(columns contact0_1_ma_z, contact0_1_fx: below 1 the normal forces resist
+the spin).
 Output: a2_a3_table.md and a2_a3.png in --output-dir (default: the work
 directory; doc/validation for the report).
 
@@ -156,6 +159,25 @@ def errors(rows, rigid):
                 drop=min(r["body0_y"] for r in rows) - y0)
 
 
+def moment_ratio(rows, radius):
+    """The contact moment on the sphere about its centre of mass
+    (contact0_1_ma_z), integrated over the run, over the friction force's
+    moment with the arm from the centre to the plane's surface (the
+    sphere starts on it: its centre R above), both at the centre's place
+    when the step's forces acted (the row's less dt times its velocity).
+    1: the normal forces act through the centre; below 1 they resist the
+    spin (a rolling resistance). NaN without the column."""
+    if "contact0_1_ma_z" not in rows[0]:
+        return float("nan")
+    surface = rows[0]["body0_y"] - radius
+    moment = friction = 0.
+    for before, r in zip(rows, rows[1:]):
+        dt = r["time"] - before["time"]
+        moment += r["contact0_1_ma_z"] * dt
+        friction += (r["body0_y"] - dt * r["body0_vy"] - surface) * r["contact0_1_fx"] * dt
+    return moment / friction if friction != 0 else float("nan")
+
+
 def order(hs, es):
     """Least-squares slope of log(error) against log(h)."""
     if len(hs) < 2 or any(e <= 0 for e in es):
@@ -207,13 +229,15 @@ def main():
             rows, wall, state = run(sable, name, radius, size, n, work, args.end_time)
             e = errors(rows, rigid)
             e.update(wall=wall, rows=rows, spin=-state["omega"] * radius / state["vx"],
-                     spin_rigid=spin(e["T"]), gap=state["sphere_min_y"] - state["plane_max_y"])
+                     spin_rigid=spin(e["T"]), gap=state["sphere_min_y"] - state["plane_max_y"],
+                     moment=moment_ratio(rows, radius))
             results[name, n] = e
             print(f"{name} R/{n}: {e['points']} points, {e['steps']} steps, {wall:.1f} s; x error at T "
                   f"{e['ex_end']:+.4f} m ({e['ex_end'] / e['x_rigid']:+.2%}), max {e['ex_max']:.4f} m; "
                   f"v error at T {e['ev_end']:+.4f} m/s ({e['ev_end'] / e['v_rigid']:+.2%}), max "
                   f"{e['ev_max']:.4f} m/s; lift {e['lift']:.4f} m; omega R / v {e['spin']:.3f} "
-                  f"(rigid {e['spin_rigid']:.3f})", flush=True)
+                  f"(rigid {e['spin_rigid']:.3f}); contact moment / (friction x arm) "
+                  f"{e['moment']:.3f}", flush=True)
 
     os.makedirs(args.output_dir, exist_ok=True)
     write_table(cases, results, os.path.join(args.output_dir, "a2_a3_table.md"))
