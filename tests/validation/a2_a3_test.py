@@ -26,6 +26,14 @@ doc/validation/a2_a3.md):
 - Both: the sphere's lowest material point stays above the plane's highest
   (no interpenetration), and the run ends at the end time with finite
   numbers.
+- A2 slip (theta = pi/3, mu = 0.286) with the sphere seeded conforming and
+  settled under the part of gravity normal to the plane ('Solver/Settling
+  gravity'), to 0.4 s: the contact moment on the sphere about its centre
+  (column contact0_1_ma_z, integrated) within 3% of the friction force
+  times its arm to the plane's surface (measured 1.007; seeded on the
+  lattice and unsettled 0.928, the normal forces resisting the spin); its
+  x and y components below 10% of the largest z one (the sphere turns
+  about z).
 - Impact of a spinning sphere (1 m/s, 5 rad/s) on a free plane body, no
   gravity and no walls in reach, to 0.1 s: total momentum is conserved to
   round-off (measured |p - p0| = 2.5e-11 kg m/s of |p0| = 4250 kg m/s);
@@ -39,7 +47,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "mpm"))
 sys.path.insert(0, os.path.join(ROOT, "contrib", "validation"))
 from scene_test import WORK, check, finish, run  # noqa: E402
-from a2_a3 import a2_noslip, a3_backspin, sphere_state  # noqa: E402
+from a2_a3 import a2_noslip, a3_backspin, moment_ratio, sphere_state  # noqa: E402
 
 PLANE = {"Shape": "box", "Group": 1, "Particles per cell direction": 2, "Material": "neo-Hookean",
          "Density": 10000, "Bulk modulus": 60e6, "Shear modulus": 30e6}
@@ -49,7 +57,8 @@ CONTACT = {"Contact/Model": "bardenhagen 2001", "Contact/Impulse scaling": 0.5,
            "Contact/Reported pairs": "0-1"}
 
 
-def scene(name, gravity, size, cells, radius, centre, plane_top, mu, end, spin="0, 0, 0"):
+def scene(name, gravity, size, cells, radius, centre, plane_top, mu, end, spin="0, 0, 0",
+          sphere={}, extra={}):
     entries = {
         "Dimension": 3, "Gravity": gravity,
         "Time/End time": end, "Time/CFL number": 0.5,
@@ -61,8 +70,9 @@ def scene(name, gravity, size, cells, radius, centre, plane_top, mu, end, spin="
         "Output/Particle output interval": end,
     }
     entries.update(CONTACT)
+    entries.update(extra)
     rows = run(name, entries, [
-        dict(SPHERE, Center=", ".join(map(str, centre)), Radius=radius, **{"Angular velocity": spin}),
+        dict(SPHERE, Center=", ".join(map(str, centre)), Radius=radius, **{"Angular velocity": spin}, **sphere),
         dict(PLANE, **{"Lower corner": "0, 0, 0", "Upper corner": f"{size[0]}, {plane_top}, {size[2]}"})])[2]
     return rows, sphere_state(os.path.join(WORK, name, "output"))
 
@@ -90,6 +100,24 @@ ratio = -state["omega"] * 1.6 / state["vx"]
 check("A2 no-slip: the sphere rolls, omega R / v >= 0.5", ratio >= 0.5, f"{ratio:.4f} (rigid 1)")
 gap = state["sphere_min_y"] - state["plane_max_y"]
 check("A2 no-slip: no interpenetration (sphere's lowest point above the plane's highest)", gap > 0, f"{gap:.4f} m")
+
+# A2 slip at R/4 (prm/a2_slip.prm) with the sphere seeded conforming and
+# settled under the part of gravity normal to the plane, to 0.4 s: the
+# contact moment on the sphere is the friction's
+END = 0.4
+theta = math.pi / 3
+rows, state = scene("a2_slip_settled", f"{10 * math.sin(theta)!r}, {-10 * math.cos(theta)!r}, 0",
+                    (20, 4.8, 4.8), (50, 12, 12), 1.6, (2.4, 2.4, 2.4), 0.8, 0.286, END,
+                    sphere={"Seeding": "conforming"},
+                    extra={"Solver/Settling steps": 20000, "Solver/Settling gravity": "0, -5, 0",
+                           "Output/Statistics interval": 1})
+ratio = moment_ratio(rows, 1.6)
+check("A2 slip, conforming, settled: the contact moment on the sphere within 3% of its friction times the arm",
+      abs(ratio - 1) <= 0.03, f"{ratio:.4f}")
+sideways = max(max(abs(r["contact0_1_ma_x"]), abs(r["contact0_1_ma_y"])) for r in rows)
+largest = max(abs(r["contact0_1_ma_z"]) for r in rows)
+check("A2 slip, conforming, settled: the moment is about z (x and y below 10% of the largest z)",
+      sideways <= 0.1 * largest, f"{sideways:.4g} against {largest:.4g} N m")
 
 # A3 backspin at R/4 (prm/a3_backspin.prm), to 0.25 s (sliding phase)
 END = 0.25
