@@ -107,11 +107,12 @@ namespace sable::mpm
             {
               const Tensor<2, dim> C = layout.affine_gradient(props);
               for (unsigned int v = 0; v < shape.n_nodes; ++v)
-                for (unsigned int d = 0; d < dim; ++d)
-                  velocities[v][d] =
-                    props[Layout::velocity + d] +
-                    C[d] * (node_positions[shape.nodes[v]] -
-                            shape.image_for_node(particle.get_location(), v));
+                {
+                  const Tensor<1, dim> offset = node_positions[shape.nodes[v]] -
+                                                shape.image_for_node(particle.get_location(), v);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    velocities[v][d] = props[Layout::velocity + d] + C[d] * offset;
+                }
               scatter_point([velocities](const unsigned int v, const unsigned int d) {
                 return velocities[v][d];
               });
