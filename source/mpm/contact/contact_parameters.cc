@@ -46,7 +46,11 @@ namespace sable::mpm
                       "larger mass at the node, whose surface the node "
                       "resolves better: a block sliding on a plane body then "
                       "meets the plane's normal, not its own corner's tilted "
-                      "one, which plows (see doc/validation.md). 'mass "
+                      "one, which plows (see doc/validation.md); where the "
+                      "two bodies' directions are less than 120 degrees "
+                      "apart (faces ending edge to edge, as at the flush "
+                      "ends of stacked blocks) it takes their difference, "
+                      "as 'average' does. 'mass "
                       "weighted' weights each body's unit mass-gradient "
                       "direction by its nodal mass; 'average' is the papers' "
                       "n = (n1 - n2)/|n1 - n2| of the unit directions.");

@@ -263,6 +263,10 @@ namespace sable::mpm
     /// sideways offset of the centroids, in cells, that surfaces_meet()
     /// does not count
     static constexpr double sideways_tolerance = 0.25;
+    /// with 'largest mass' normals: two bodies whose unit outward
+    /// directions at a node have a larger dot product (less than 120
+    /// degrees apart) do not face each other there (pair_normal())
+    static constexpr double facing_limit = -0.5;
 
     unsigned int
     pair_index(const unsigned int a, const unsigned int b) const;

@@ -33,7 +33,9 @@ namespace sable::mpm
       average,
       /// the normal of the body with the larger mass at the node, whose
       /// surface the node resolves better (a flat plane's, not the corner
-      /// of a block resting on it)
+      /// of a block resting on it); where the two bodies' directions are
+      /// less than 120 degrees apart (faces ending edge to edge, as at the
+      /// flush ends of stacked blocks) the average
       largest_mass
     };
     Normals normals = Normals::largest_mass;
