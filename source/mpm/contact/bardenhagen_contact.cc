@@ -496,20 +496,23 @@ namespace sable::mpm
   {
     Tensor<1, dim> common;
     if (parameters.normals == ContactParameters::Normals::largest_mass)
-      // the normal of the body with more mass at the node, whose surface
-      // the node resolves better: a flat plane's, not a block corner's;
-      // but bodies whose outward directions are less than 120 degrees
-      // apart do not face each other there (faces in contact are 180
-      // degrees apart, a corner on a face 135): their faces end at the
-      // node, edge to edge (the flush ends of stacked blocks), and either
-      // body's direction leans along its end face and would stop the
-      // bodies sliding along their interface; the difference of the two
-      // keeps what they do not share, the interface's normal
-      common = normal_a * normal_b > facing_limit && normal_a.norm_square() > 0 &&
-                   normal_b.norm_square() > 0 ?
-                 normal_a - normal_b :
-               a.mass >= b.mass ? normal_a :
-                                  Tensor<1, dim>(-normal_b);
+      {
+        // the normal of the body with more mass at the node, whose surface
+        // the node resolves better: a flat plane's, not a block corner's;
+        // but bodies whose outward directions are less than 120 degrees
+        // apart do not face each other there (faces in contact are 180
+        // degrees apart, a corner on a face 135): their faces end at the
+        // node, edge to edge (the flush ends of stacked blocks), and either
+        // body's direction leans along its end face and would stop the
+        // bodies sliding along their interface; the difference of the two
+        // keeps what they do not share, the interface's normal
+        const bool ends_meet = normal_a.norm_square() > 0 && normal_b.norm_square() > 0 &&
+                               normal_a * normal_b > facing_limit;
+        if (ends_meet)
+          common = normal_a - normal_b;
+        else
+          common = a.mass >= b.mass ? normal_a : Tensor<1, dim>(-normal_b);
+      }
     else if (parameters.normals == ContactParameters::Normals::average)
       common = normal_a - normal_b;
     else
