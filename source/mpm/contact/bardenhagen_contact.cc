@@ -345,7 +345,11 @@ namespace sable::mpm
                                          std::numeric_limits<double>::min()) :
                 1.;
             Tensor<1, dim> combined = own_weight * own[a] - others;
-            const double   norm     = combined.norm();
+            // a fitted plane separates the body from all the others
+            if (parameters.normals == ContactParameters::Normals::logistic_regression &&
+                begin[a].separating_normal.norm_square() > 0)
+              combined = begin[a].separating_normal;
+            const double norm = combined.norm();
             normal[a] = norm > 0 ? combined / norm : Tensor<1, dim>();
           }
       }
@@ -495,7 +499,16 @@ namespace sable::mpm
                                        const Tensor<1, dim> &                  normal_b) const
   {
     Tensor<1, dim> common;
-    if (parameters.normals == ContactParameters::Normals::largest_mass)
+    // the fitted planes' normals where both bodies have one (for two
+    // bodies they are opposite; at nodes of more, each body's plane
+    // separates it from all the others); else the default
+    const bool fitted = parameters.normals == ContactParameters::Normals::logistic_regression &&
+                        a.separating_normal.norm_square() > 0 &&
+                        b.separating_normal.norm_square() > 0;
+    if (fitted)
+      common = a.separating_normal - b.separating_normal;
+    else if (parameters.normals == ContactParameters::Normals::largest_mass ||
+             parameters.normals == ContactParameters::Normals::logistic_regression)
       {
         // the normal of the body with more mass at the node, whose surface
         // the node resolves better: a flat plane's, not a block corner's;

@@ -17,7 +17,8 @@ namespace sable::mpm
     const NamedChoice<ContactParameters::Normals> normal_methods{
       {"mass weighted", ContactParameters::Normals::mass_weighted},
       {"average", ContactParameters::Normals::average},
-      {"largest mass", ContactParameters::Normals::largest_mass}};
+      {"largest mass", ContactParameters::Normals::largest_mass},
+      {"logistic regression", ContactParameters::Normals::logistic_regression}};
     const NamedChoice<ContactParameters::Detection> detections{
       {"shared nodes", ContactParameters::Detection::shared_nodes},
       {"surface position", ContactParameters::Detection::surface_position}};
@@ -53,7 +54,13 @@ namespace sable::mpm
                       "as 'average' does. 'mass "
                       "weighted' weights each body's unit mass-gradient "
                       "direction by its nodal mass; 'average' is the papers' "
-                      "n = (n1 - n2)/|n1 - n2| of the unit directions.");
+                      "n = (n1 - n2)/|n1 - n2| of the unit directions. "
+                      "'logistic regression' fits the plane that best "
+                      "separates the two bodies' points around the node "
+                      "(Nairn, Hammerquist & Smith 2020; at nodes of three "
+                      "or more bodies each body against the others) and "
+                      "takes its normal: slower, and independent of the "
+                      "bodies' masses at the node.");
     prm.declare_entry("Detection",
                       "surface position",
                       detections.pattern(),

@@ -14,6 +14,7 @@ namespace sable::mpm
     : parameters(parameters)
     , with_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
     , with_position(parameters.detection == ContactParameters::Detection::surface_position)
+    , with_regression(parameters.normals == ContactParameters::Normals::logistic_regression)
     , model(parameters, body_groups)
   {}
 
@@ -104,6 +105,52 @@ namespace sable::mpm
         }
     });
     fields.allocate();
+    if (with_regression)
+      {
+        samples.resize(fields.n_all_records());
+        for (auto &record_samples : samples)
+          record_samples.clear();
+      }
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::fit_separating_planes(const Grid<dim> &grid)
+  {
+    const std::vector<unsigned int> &nodes = fields.get_contact_nodes();
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(nodes.size()),
+      [&](const unsigned int first, const unsigned int last) {
+        std::vector<NodeSample<dim>> others;
+        for (unsigned int i = first; i < last; ++i)
+          {
+            const unsigned int      node     = nodes[i];
+            const Point<dim> &      origin   = grid.node_positions()[node];
+            const Tensor<1, dim> &  size     = grid.node_spacing()[node];
+            const auto [begin, end]          = fields.node_records(node);
+            const auto samples_of = [&](const Record &r) -> const std::vector<NodeSample<dim>> & {
+              return samples[fields.index_of(r)];
+            };
+            if (end - begin == 2)
+              {
+                // one plane for both: the fit is symmetric in the two clouds
+                begin[0].separating_normal =
+                  separating_normal(samples_of(begin[0]), samples_of(begin[1]), origin, size);
+                begin[1].separating_normal = -begin[0].separating_normal;
+                continue;
+              }
+            for (Record *r = begin; r != end; ++r)
+              {
+                others.clear();
+                for (const Record *o = begin; o != end; ++o)
+                  if (o != r)
+                    others.insert(others.end(), samples_of(*o).begin(), samples_of(*o).end());
+                r->separating_normal = separating_normal(samples_of(*r), others, origin, size);
+              }
+          }
+      },
+      64);
   }
 
   template <int dim>
@@ -194,6 +241,8 @@ namespace sable::mpm
       }
     if (drivers)
       hold_drivers(true, false, n_owned_nodes);
+    if (momentum_update && with_regression)
+      fit_separating_planes(grid);
     if (momentum_update ? parameters.on_momentum_update : parameters.on_strain_update)
       model.apply(fields,
                   grid.node_spacing(),

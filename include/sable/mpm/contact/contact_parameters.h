@@ -36,7 +36,11 @@ namespace sable::mpm
       /// of a block resting on it); where the two bodies' directions are
       /// less than 120 degrees apart (faces ending edge to edge, as at the
       /// flush ends of stacked blocks) the average
-      largest_mass
+      largest_mass,
+      /// the normal of the plane that best separates the two bodies'
+      /// points near the node (logistic regression, Nairn, Hammerquist &
+      /// Smith 2020): geometry, not mass, decides
+      logistic_regression
     };
     Normals normals = Normals::largest_mass;
     /// Which two-body nodes may act: every node the bodies share (the

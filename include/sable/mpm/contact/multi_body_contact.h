@@ -9,6 +9,7 @@
 #include <sable/mpm/cell_colouring.h>
 #include <sable/mpm/contact/bardenhagen_contact.h>
 #include <sable/mpm/contact/body_fields.h>
+#include <sable/mpm/contact/separating_plane.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/grid_pass.h>
 #include <sable/mpm/particle_cells.h>
@@ -105,6 +106,9 @@ namespace sable::mpm
                   record.mass_position += weight * shape.image_for_node(location, v);
                   record.mass_spacing += weight * spacing;
                 }
+              if (with_regression)
+                samples[fields.index_of(record)].push_back(
+                  {shape.image_for_node(location, v), weight});
               if (with_traction)
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = i; j < dim; ++j)
@@ -227,6 +231,12 @@ namespace sable::mpm
                            const double             time_step,
                            const unsigned int       n_owned_nodes);
 
+    /// With 'Normals = logistic regression': each record's separating
+    /// normal from the points sampled at its node (threaded over the
+    /// contact nodes; each node is fitted on its own).
+    void
+    fit_separating_planes(const Grid<dim> &grid);
+
     /// Gather the bodies of each cell's points into cell_bodies, threaded
     /// over fixed blocks of cells (the same list for any number of
     /// threads).
@@ -242,7 +252,11 @@ namespace sable::mpm
     const ContactParameters parameters;
     const bool              with_traction;
     const bool              with_position;
+    const bool              with_regression;
     BodyFields<dim>         fields;
+    /// with_regression: per record, its body's points around the node
+    /// (their storage kept from step to step)
+    std::vector<std::vector<NodeSample<dim>>> samples;
     BardenhagenContact<dim> model;
 
     /// The bodies of each cell's points (linear shape functions), in the
