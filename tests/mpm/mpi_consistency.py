@@ -4,7 +4,8 @@
 rolling on a friction floor under tilted gravity, 2D and 3D, so particles
 cross the partition boundary, a plastic box squeezed by a moving wall, and
 two disks colliding with frictional contact across the partition boundary
-(ghost particles complete the per-body fields). The plastic box also on four
+(ghost particles complete the per-body fields), with the default normals and
+with the planes fitted between the bodies' points. The plastic box also on four
 ranks (oversubscribed): one of them holds no wall node, yet takes part in
 the reduction of the walls' work.
 
@@ -81,11 +82,16 @@ compare("plastic_box", {
 }, [{"Shape": "box", "Lower corner": "0, 0.3", "Upper corner": "1, 0.7", "Material": "von Mises",
      "Young's modulus": 1e6, "Poisson's ratio": 0.3, "von Mises/Yield stress": 1e4, "von Mises/Hardening modulus": 1e5,
      "Density": 1000, "Particles per cell direction": 2}], more_ranks=(2, 4))
-compare("contact_2d", {
+contact_2d = {
     "Dimension": 2, "Time/End time": 0.05, "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1",
     "Grid/Subdivisions": "40, 20", "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": 0.3,
-}, [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0"),
-    dict(elastic, Shape="disk", Center="1.255, 0.56", Radius=0.2, Velocity="-5, 0")])
+}
+colliding_disks = [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0"),
+                   dict(elastic, Shape="disk", Center="1.255, 0.56", Radius=0.2, Velocity="-5, 0")]
+compare("contact_2d", contact_2d, colliding_disks)
+# the planes fitted between the bodies' points read the ghost particles too
+compare("contact_2d_regression", dict(contact_2d, **{"Contact/Normals": "logistic regression"}),
+        colliding_disks)
 
 # 32 x 32 cells, a box of 8 x 8 cells with 4 x 4 points per cell (1024
 # points) in the lower left corner, moving and squeezed against the walls

@@ -14,7 +14,9 @@ gather and the stress update (each point's own data only).
    side by side, a third disk dropped between them) under gravity, on a grid
    refined at body surfaces and contacts every 4 steps, so that cells with
    hanging nodes scatter through the folded shape functions, and nodes with
-   three bodies occur; pair forces of all six pairs are reported.
+   three bodies occur; pair forces of all six pairs are reported. The
+   same pile with 'Contact/Normals = logistic regression' (one and two
+   threads).
 
 A bad thread count stops with a message naming the option."""
 import csv
@@ -91,6 +93,15 @@ for name, arguments, environment in (("pile_two", ["--threads", "2"], {}),
     code, output, text = run_with(name, arguments, environment, pile_scene)
     check(f"pile, {name[5:]} threads: same statistics.csv as one thread", code == 0 and text == one,
           output[-300:])
+# the same pile with the planes fitted between the bodies' points: each
+# node's samples come colour by colour, so their order, and the fit, does
+# not depend on the threads either
+fitted_scene = (dict(pile_entries, **{"Contact/Normals": "logistic regression"}), pile)
+code, output, one = run_with("fitted_one", [], {"SABLE_THREADS": ""}, fitted_scene)
+check("pile, logistic-regression normals, one thread: runs", code == 0, output[-300:])
+code, output, text = run_with("fitted_two", ["--threads", "2"], {}, fitted_scene)
+check("pile, logistic-regression normals, two threads: same statistics.csv as one thread",
+      code == 0 and text == one and one.count("\n") > 20, output[-300:])
 
 code, output, _ = run_with("bad", ["--threads", "two"], {})
 check("--threads two: refused with exit code 2", code == 2 and "--threads" in output and "two" in output,
