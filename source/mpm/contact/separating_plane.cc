@@ -1,7 +1,9 @@
 #include <sable/mpm/contact/separating_plane.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace sable::mpm
 {
@@ -20,19 +22,6 @@ namespace sable::mpm
     /// of a contact node).
     constexpr double       turn_tolerance = 1e-4;
     constexpr unsigned int max_iterations = 30;
-
-    /// log(1 + exp(f)) without overflow
-    double
-    softplus(const double f)
-    {
-      return std::max(f, 0.) + std::log1p(std::exp(-std::abs(f)));
-    }
-
-    double
-    logistic(const double f)
-    {
-      return f >= 0 ? 1. / (1. + std::exp(-f)) : std::exp(f) / (1. + std::exp(f));
-    }
 
     /// Solve A x = b in place for a symmetric positive definite A (Cholesky).
     template <unsigned int n>
@@ -88,14 +77,15 @@ namespace sable::mpm
     if (!(inside_weight > 0) || !(outside_weight > 0))
       return Tensor<1, dim>();
 
-    // each point as (xi, 1), its label (1 inside) and its scaled weight
+    // each point as (xi, 1), its label (1 inside) and its scaled weight;
+    // kept per thread, as the fits run node after node
     struct Row
     {
       Vector z;
       double label, weight;
     };
-    std::vector<Row> rows;
-    rows.reserve(inside.size() + outside.size());
+    thread_local std::vector<Row> rows;
+    rows.clear();
     const auto add_rows = [&](const std::vector<NodeSample<dim>> &cloud,
                               const double                        label,
                               const double                        total) {
@@ -113,14 +103,26 @@ namespace sable::mpm
     add_rows(inside, 1., inside_weight);
     add_rows(outside, 0., outside_weight);
 
-    const auto objective = [&](const Vector &theta) {
+    // the objective at theta; each row's f and exp(-|f|) go to @p at,
+    // from which the gradient at theta needs no exponential of its own
+    struct Evaluation
+    {
+      double f, decay;
+    };
+    thread_local std::vector<Evaluation> current, trial_evaluation;
+    const auto objective = [&](const Vector &theta, std::vector<Evaluation> &at) {
+      at.resize(rows.size());
       double value = 0;
-      for (const Row &row : rows)
+      for (unsigned int i = 0; i < rows.size(); ++i)
         {
-          double f = 0;
+          const Row &row = rows[i];
+          double     f   = 0;
           for (unsigned int k = 0; k < n; ++k)
             f += theta[k] * row.z[k];
-          value += row.weight * (softplus(f) - row.label * f);
+          // log(1 + exp(f)) without overflow
+          const double decay = std::exp(-std::abs(f));
+          value += row.weight * (std::max(f, 0.) + std::log1p(decay) - row.label * f);
+          at[i] = {f, decay};
         }
       for (unsigned int d = 0; d < dim; ++d)
         value += 0.5 * ridge_penalty * theta[d] * theta[d];
@@ -135,29 +137,29 @@ namespace sable::mpm
     };
 
     Vector theta{};
-    double value = objective(theta);
+    double value = objective(theta, current);
     for (unsigned int iteration = 0; iteration < max_iterations; ++iteration)
       {
         Vector gradient{};
         Matrix hessian{};
-        for (const Row &row : rows)
+        for (unsigned int i = 0; i < rows.size(); ++i)
           {
-            double f = 0;
-            for (unsigned int k = 0; k < n; ++k)
-              f += theta[k] * row.z[k];
-            const double p = logistic(f);
+            const Row &        row   = rows[i];
+            const auto [f, decay]    = current[i];
+            // the logistic function 1/(1 + exp(-f)) from exp(-|f|)
+            const double p = f >= 0 ? 1. / (1. + decay) : decay / (1. + decay);
             const double r = row.weight * (p - row.label);
             const double h = row.weight * p * (1. - p);
-            for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int a = 0; a < n; ++a)
               {
-                gradient[i] += r * row.z[i];
-                for (unsigned int j = 0; j <= i; ++j)
-                  hessian[i][j] += h * row.z[i] * row.z[j];
+                gradient[a] += r * row.z[a];
+                for (unsigned int b = 0; b <= a; ++b)
+                  hessian[a][b] += h * row.z[a] * row.z[b];
               }
           }
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < i; ++j)
-            hessian[j][i] = hessian[i][j];
+        for (unsigned int a = 0; a < n; ++a)
+          for (unsigned int b = 0; b < a; ++b)
+            hessian[b][a] = hessian[a][b];
         for (unsigned int d = 0; d < dim; ++d)
           {
             gradient[d] += ridge_penalty * theta[d];
@@ -179,13 +181,14 @@ namespace sable::mpm
           {
             for (unsigned int k = 0; k < n; ++k)
               trial[k] = theta[k] - length * step[k];
-            trial_value = objective(trial);
+            trial_value = objective(trial, trial_evaluation);
             if (trial_value <= value - 1e-4 * length * slope)
               break;
           }
         const Tensor<1, dim> before = direction_of(theta);
         theta                       = trial;
         value                       = trial_value;
+        std::swap(current, trial_evaluation);
         if (iteration > 0 && (direction_of(theta) - before).norm() < turn_tolerance)
           break;
       }
