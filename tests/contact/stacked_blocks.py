@@ -1,12 +1,12 @@
 #!/usr/bin/python3
 """Two blocks stacked on a plane body: two frictional interfaces at once.
 
-A 0.4 x 0.1 m lower block (body 1) on a fixed elastic plane body (body 0),
+A 0.4 x 0.2 m lower block (body 1) on a fixed elastic plane body (body 0),
 a 0.1 m square block (body 2) on top of it, all E = 10 MPa, nu = 0.3,
 rho = 1000 kg/m^3, cells of 0.025 m, 2x2 points per cell, gravity 9.81
 m/s^2 tilted by theta, Bardenhagen 2001 contact with the default normals,
 'Group friction' mu01 between plane and lower block, mu12 between the
-blocks. Rigid blocks with mass ratio r = m2 / m1 = 1/4 both slide when the
+blocks. Rigid blocks with mass ratio r = m2 / m1 = 1/8 both slide when the
 top one is the faster:
     a2 = g (sin - mu12 cos),  a1 = g (sin + mu12 r cos - mu01 (1 + r) cos).
 The accelerations are fitted to x(t) over 0.05..0.4 s (the blocks start
