@@ -125,10 +125,10 @@ namespace sable::mpm
         std::vector<NodeSample<dim>> others;
         for (unsigned int i = first; i < last; ++i)
           {
-            const unsigned int      node     = nodes[i];
-            const Point<dim> &      origin   = grid.node_positions()[node];
-            const Tensor<1, dim> &  size     = grid.node_spacing()[node];
-            const auto [begin, end]          = fields.node_records(node);
+            const unsigned int    node   = nodes[i];
+            const Point<dim> &    origin = grid.node_positions()[node];
+            const Tensor<1, dim> &size   = grid.node_spacing()[node];
+            const auto [begin, end]      = fields.node_records(node);
             const auto samples_of = [&](const Record &r) -> const std::vector<NodeSample<dim>> & {
               return samples[fields.index_of(r)];
             };

@@ -144,8 +144,8 @@ namespace sable::mpm
         Matrix hessian{};
         for (unsigned int i = 0; i < rows.size(); ++i)
           {
-            const Row &        row   = rows[i];
-            const auto [f, decay]    = current[i];
+            const Row &row        = rows[i];
+            const auto [f, decay] = current[i];
             // the logistic function 1/(1 + exp(-f)) from exp(-|f|)
             const double p = f >= 0 ? 1. / (1. + decay) : decay / (1. + decay);
             const double r = row.weight * (p - row.label);
