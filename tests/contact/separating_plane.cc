@@ -7,7 +7,8 @@
 // - a straight interface at angles 0..75 degrees, each body seeded on its
 //   own lattice aligned with the interface, the node at several offsets
 //   from it: the plane of widest gap is the interface, and the fit (whose
-//   penalty stops short of that limit) is within 3 degrees of it;
+//   penalty stops short of that limit) is within 3 degrees of it; in 2D,
+//   with cells of 1 x 0.5 (the fit works in cell units) and in 3D;
 // - a block's corner on a plane, the corner at or beyond the node, and the
 //   block moved 0.1 and 0.2 cells into the plane: within 3.5 degrees of the
 //   plane's normal (the limit of the fit's penalty, see separating_plane.cc;
@@ -29,15 +30,27 @@ namespace
 {
   constexpr double degree = M_PI / 180.;
 
-  /// Points on a lattice of spacing h/2 in the frame (t, n) rotated by
-  /// @p angle, kept where @p inside says so and the node's Q1 weight is
-  /// positive; weight = the Q1 shape value (unit masses), cells of size 1.
+  template <int dim>
+  Tensor<1, dim>
+  unit_cells()
+  {
+    Tensor<1, dim> size;
+    for (unsigned int d = 0; d < dim; ++d)
+      size[d] = 1;
+    return size;
+  }
+
+  /// Points on a lattice of spacing 1/2 in the frame (t, n) rotated by
+  /// @p angle, moved by @p shift, kept where @p inside says so and the
+  /// node's Q1 weight on cells of @p cell_size is positive; weight = that
+  /// Q1 shape value (unit masses).
   template <int dim>
   std::vector<NodeSample<dim>>
   cloud(const std::function<bool(const Point<dim> &)> &inside,
         const Point<dim> &                              node,
-        const double                                    angle = 0,
-        const Tensor<1, dim> &                          shift = Tensor<1, dim>())
+        const double                                    angle     = 0,
+        const Tensor<1, dim> &                          shift     = Tensor<1, dim>(),
+        const Tensor<1, dim> &                          cell_size = unit_cells<dim>())
   {
     std::vector<NodeSample<dim>> samples;
     const double                 s = 0.5;
@@ -58,21 +71,11 @@ namespace
             x += shift;
             double weight = 1;
             for (unsigned int d = 0; d < dim; ++d)
-              weight *= std::max(0., 1. - std::abs(x[d] - node[d]));
+              weight *= std::max(0., 1. - std::abs(x[d] - node[d]) / cell_size[d]);
             if (weight > 0)
               samples.push_back({x, weight});
           }
     return samples;
-  }
-
-  template <int dim>
-  Tensor<1, dim>
-  unit_cells()
-  {
-    Tensor<1, dim> size;
-    for (unsigned int d = 0; d < dim; ++d)
-      size[d] = 1;
-    return size;
   }
 
   /// The angle between @p a and @p b, in degrees.
@@ -113,25 +116,35 @@ namespace
           std::abs(n[0]) < 1e-12 && std::abs(n[1]) < 1e-12 && std::abs(n[2] + 1) < 1e-12);
   }
 
+  /// A straight interface through the x-y plane at 0..75 degrees (in 3D a
+  /// plane containing z), each side seeded on a lattice aligned with it,
+  /// the node up to 0.45 cells off it; cells of @p cell_size.
+  template <int dim>
   void
-  tilted_interface()
+  tilted_interface(const Tensor<1, dim> &cell_size, const std::string &what)
   {
     double worst = 0;
     for (const double angle : {0., 10., 17., 30., 45., 60., 75.})
       for (const double offset : {0., 0.2, 0.45})
         {
-          const double       a = angle * degree;
-          const Tensor<1, 2> normal({-std::sin(a), std::cos(a)});
+          const double   a = angle * degree;
+          Tensor<1, dim> normal;
+          normal[0] = -std::sin(a);
+          normal[1] = std::cos(a);
           // the node off the interface by offset cells along its normal
-          const Point<2> node(-offset * normal[0], -offset * normal[1]);
-          const auto     upper =
-            cloud<2>([&](const Point<2> &x) { return x * normal > 0; }, node, a);
-          const auto lower = cloud<2>([&](const Point<2> &x) { return x * normal < 0; }, node, a);
-          const Tensor<1, 2> n = separating_normal(upper, lower, node, unit_cells<2>());
-          worst                = std::max(worst, angle_between(n, Tensor<1, 2>(-normal)));
+          double cells_along_normal = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            cells_along_normal += std::pow(normal[d] * cell_size[d], 2);
+          const Point<dim> node(-offset * std::sqrt(cells_along_normal) * normal);
+          const auto       upper = cloud<dim>(
+            [&](const Point<dim> &x) { return x * normal > 0; }, node, a, Tensor<1, dim>(), cell_size);
+          const auto lower = cloud<dim>(
+            [&](const Point<dim> &x) { return x * normal < 0; }, node, a, Tensor<1, dim>(), cell_size);
+          const Tensor<1, dim> n = separating_normal(upper, lower, node, cell_size);
+          worst                  = std::max(worst, angle_between(n, Tensor<1, dim>(-normal)));
         }
-    check("straight interface at 0..75 degrees, node up to 0.45 cells off it: the fitted "
-          "normal is within 3 degrees (worst " +
+    check(what + ": straight interface at 0..75 degrees, node up to 0.45 cells off it: the "
+                 "fitted normal is within 3 degrees (worst " +
             std::to_string(worst) + ")",
           worst < 3);
   }
@@ -187,7 +200,10 @@ int
 main()
 {
   flush_faces();
-  tilted_interface();
+  tilted_interface<2>(unit_cells<2>(), "2D");
+  // the fit works in cell units: the normal must come back in real space
+  tilted_interface<2>(Tensor<1, 2>({1., 0.5}), "2D, cells of 1 x 0.5");
+  tilted_interface<3>(unit_cells<3>(), "3D");
   corner_on_plane();
   empty_cloud();
   return sable_tests::exit_code();
