@@ -54,8 +54,11 @@ namespace sable::mpm
                                  const unsigned int                 n_owned_nodes,
                                  const bool                         record_forces,
                                  const MPI_Comm                     communicator,
-                                 const std::vector<Point<dim>> *    node_positions)
+                                 const std::vector<Point<dim>> *    node_positions,
+                                 const std::vector<Tensor<1, dim>> *fitted_normals)
   {
+    pass_fields = &fields;
+    pass_fitted = fitted_normals;
     // Each node changes only its own records, so the chunks of nodes run in
     // parallel; what each node adds to the sums is kept and added node by
     // node at the end, the same way for any number of threads.
@@ -346,9 +349,8 @@ namespace sable::mpm
                 1.;
             Tensor<1, dim> combined = own_weight * own[a] - others;
             // a fitted plane separates the body from all the others
-            if (parameters.normals == ContactParameters::Normals::logistic_regression &&
-                begin[a].separating_normal.norm_square() > 0)
-              combined = begin[a].separating_normal;
+            if (const Tensor<1, dim> fitted = fitted_normal(begin[a]); fitted.norm_square() > 0)
+              combined = fitted;
             const double norm = combined.norm();
             normal[a] = norm > 0 ? combined / norm : Tensor<1, dim>();
           }
@@ -502,11 +504,9 @@ namespace sable::mpm
     // the fitted planes' normals where both bodies have one (for two
     // bodies they are opposite; at nodes of more, each body's plane
     // separates it from all the others); else the default
-    const bool fitted = parameters.normals == ContactParameters::Normals::logistic_regression &&
-                        a.separating_normal.norm_square() > 0 &&
-                        b.separating_normal.norm_square() > 0;
-    if (fitted)
-      common = a.separating_normal - b.separating_normal;
+    const Tensor<1, dim> fitted_a = fitted_normal(a), fitted_b = fitted_normal(b);
+    if (fitted_a.norm_square() > 0 && fitted_b.norm_square() > 0)
+      common = fitted_a - fitted_b;
     else if (parameters.normals == ContactParameters::Normals::largest_mass ||
              parameters.normals == ContactParameters::Normals::logistic_regression)
       {

@@ -118,6 +118,7 @@ namespace sable::mpm
   MultiBodyContact<dim>::fit_separating_planes(const Grid<dim> &grid)
   {
     const std::vector<unsigned int> &nodes = fields.get_contact_nodes();
+    fitted_normals.resize(fields.n_all_records());
     parallel::apply_to_subranges(
       0u,
       static_cast<unsigned int>(nodes.size()),
@@ -125,28 +126,27 @@ namespace sable::mpm
         std::vector<NodeSample<dim>> others;
         for (unsigned int i = first; i < last; ++i)
           {
-            const unsigned int    node   = nodes[i];
-            const Point<dim> &    origin = grid.node_positions()[node];
-            const Tensor<1, dim> &size   = grid.node_spacing()[node];
-            const auto [begin, end]      = fields.node_records(node);
-            const auto samples_of = [&](const Record &r) -> const std::vector<NodeSample<dim>> & {
-              return samples[fields.index_of(r)];
-            };
-            if (end - begin == 2)
+            const unsigned int    node         = nodes[i];
+            const Point<dim> &    origin       = grid.node_positions()[node];
+            const Tensor<1, dim> &size         = grid.node_spacing()[node];
+            const auto [begin, end]            = fields.node_records(node);
+            const std::size_t     first_record = fields.index_of(*begin);
+            const std::size_t     n_records    = end - begin;
+            if (n_records == 2)
               {
                 // one plane for both: the fit is symmetric in the two clouds
-                begin[0].separating_normal =
-                  separating_normal(samples_of(begin[0]), samples_of(begin[1]), origin, size);
-                begin[1].separating_normal = -begin[0].separating_normal;
+                fitted_normals[first_record] =
+                  separating_normal(samples[first_record], samples[first_record + 1], origin, size);
+                fitted_normals[first_record + 1] = -fitted_normals[first_record];
                 continue;
               }
-            for (Record *r = begin; r != end; ++r)
+            for (std::size_t r = first_record; r < first_record + n_records; ++r)
               {
                 others.clear();
-                for (const Record *o = begin; o != end; ++o)
+                for (std::size_t o = first_record; o < first_record + n_records; ++o)
                   if (o != r)
-                    others.insert(others.end(), samples_of(*o).begin(), samples_of(*o).end());
-                r->separating_normal = separating_normal(samples_of(*r), others, origin, size);
+                    others.insert(others.end(), samples[o].begin(), samples[o].end());
+                fitted_normals[r] = separating_normal(samples[r], others, origin, size);
               }
           }
       },
@@ -252,7 +252,8 @@ namespace sable::mpm
                   grid.triangulation.get_communicator(),
                   // a moment about the origin means nothing across a
                   // periodic seam
-                  grid.periodicity().any() ? nullptr : &grid.node_positions());
+                  grid.periodicity().any() ? nullptr : &grid.node_positions(),
+                  with_regression ? &fitted_normals : nullptr);
     if (drivers)
       hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())

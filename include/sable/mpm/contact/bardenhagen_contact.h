@@ -53,7 +53,11 @@ namespace sable::mpm
      * reach the particles) frictional heat, pair forces and the output
      * fields of the records are accumulated, for nodes below
      * @p n_owned_nodes only, so that sums over ranks count each node once.
-     * With @p node_positions also the reported pairs' moments.
+     * With @p node_positions also the reported pairs' moments. With
+     * @p fitted_normals ('Normals = logistic regression'), per record
+     * (BodyFields::index_of()) the unit normal out of its body of the plane
+     * fitted between its points and the other bodies' at the node, zero
+     * where none could be fitted.
      */
     void
     apply(BodyFields<dim> &                  fields,
@@ -62,7 +66,8 @@ namespace sable::mpm
           const unsigned int                 n_owned_nodes,
           const bool                         record_forces,
           const MPI_Comm                     communicator   = MPI_COMM_SELF,
-          const std::vector<Point<dim>> *    node_positions = nullptr);
+          const std::vector<Point<dim>> *    node_positions = nullptr,
+          const std::vector<Tensor<1, dim>> *fitted_normals = nullptr);
 
     /// Frictional work converted to heat so far (this rank's nodes;
     /// Statistics::contact_heat): the friction impulses times the slip the
@@ -270,6 +275,18 @@ namespace sable::mpm
 
     unsigned int
     pair_index(const unsigned int a, const unsigned int b) const;
+
+    /// The records of this apply() and their fitted normals (nullptr
+    /// without), for fitted_normal().
+    const BodyFields<dim> *            pass_fields = nullptr;
+    const std::vector<Tensor<1, dim>> *pass_fitted = nullptr;
+
+    /// The fitted normal of record @p r in this apply(), or zero.
+    Tensor<1, dim>
+    fitted_normal(const typename BodyFields<dim>::Record &r) const
+    {
+      return pass_fitted != nullptr ? (*pass_fitted)[pass_fields->index_of(r)] : Tensor<1, dim>();
+    }
 
     std::vector<ChunkResults> chunk_results;
     /// per pair, this pass's net normal and friction impulses

@@ -41,10 +41,6 @@ namespace sable::mpm
       double mass_spacing;
       /// sum_p m_p sigma_p N (in-plane part), for the traction criterion
       SymmetricTensor<2, dim> mass_stress;
-      /// with 'Normals = logistic regression': the unit normal, out of the
-      /// body, of the plane separating its points near the node from the
-      /// other bodies' (zero where it could not be fitted)
-      Tensor<1, dim>          separating_normal;
       Tensor<1, dim>          old_velocity;
       Tensor<1, dim>          new_velocity;
       /// set by the contact pass after the momentum update, for output:

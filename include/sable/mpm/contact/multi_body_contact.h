@@ -231,9 +231,9 @@ namespace sable::mpm
                            const double             time_step,
                            const unsigned int       n_owned_nodes);
 
-    /// With 'Normals = logistic regression': each record's separating
-    /// normal from the points sampled at its node (threaded over the
-    /// contact nodes; each node is fitted on its own).
+    /// With 'Normals = logistic regression': each record's fitted normal
+    /// from the points sampled at its node (threaded over the contact
+    /// nodes; each node is fitted on its own).
     void
     fit_separating_planes(const Grid<dim> &grid);
 
@@ -255,8 +255,10 @@ namespace sable::mpm
     const bool              with_regression;
     BodyFields<dim>         fields;
     /// with_regression: per record, its body's points around the node
-    /// (their storage kept from step to step)
+    /// (their storage kept from step to step), and the normal out of its
+    /// body of the plane fitted between them and the other bodies' points
     std::vector<std::vector<NodeSample<dim>>> samples;
+    std::vector<Tensor<1, dim>>               fitted_normals;
     BardenhagenContact<dim> model;
 
     /// The bodies of each cell's points (linear shape functions), in the
