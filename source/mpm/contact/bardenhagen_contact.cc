@@ -349,8 +349,8 @@ namespace sable::mpm
                 1.;
             Tensor<1, dim> combined = own_weight * own[a] - others;
             // a fitted plane separates the body from all the others
-            if (const Tensor<1, dim> fitted = fitted_normal(begin[a]); fitted.norm_square() > 0)
-              combined = fitted;
+            if (pass_fitted != nullptr && fitted_normal(begin[a]).norm_square() > 0)
+              combined = fitted_normal(begin[a]);
             const double norm = combined.norm();
             normal[a] = norm > 0 ? combined / norm : Tensor<1, dim>();
           }
@@ -504,9 +504,9 @@ namespace sable::mpm
     // the fitted planes' normals where both bodies have one (for two
     // bodies they are opposite; at nodes of more, each body's plane
     // separates it from all the others); else the default
-    const Tensor<1, dim> fitted_a = fitted_normal(a), fitted_b = fitted_normal(b);
-    if (fitted_a.norm_square() > 0 && fitted_b.norm_square() > 0)
-      common = fitted_a - fitted_b;
+    if (pass_fitted != nullptr && fitted_normal(a).norm_square() > 0 &&
+        fitted_normal(b).norm_square() > 0)
+      common = fitted_normal(a) - fitted_normal(b);
     else if (parameters.normals == ContactParameters::Normals::largest_mass ||
              parameters.normals == ContactParameters::Normals::logistic_regression)
       {

@@ -281,11 +281,12 @@ namespace sable::mpm
     const BodyFields<dim> *            pass_fields = nullptr;
     const std::vector<Tensor<1, dim>> *pass_fitted = nullptr;
 
-    /// The fitted normal of record @p r in this apply(), or zero.
-    Tensor<1, dim>
+    /// The fitted normal of record @p r in this apply() (only with
+    /// pass_fitted).
+    const Tensor<1, dim> &
     fitted_normal(const typename BodyFields<dim>::Record &r) const
     {
-      return pass_fitted != nullptr ? (*pass_fitted)[pass_fields->index_of(r)] : Tensor<1, dim>();
+      return (*pass_fitted)[pass_fields->index_of(r)];
     }
 
     std::vector<ChunkResults> chunk_results;
