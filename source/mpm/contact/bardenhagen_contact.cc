@@ -503,12 +503,17 @@ namespace sable::mpm
     Tensor<1, dim> common;
     // the fitted planes' normals where both bodies have one (for two
     // bodies they are opposite; at nodes of more, each body's plane
-    // separates it from all the others); else the default
-    if (pass_fitted != nullptr && fitted_normal(a).norm_square() > 0 &&
-        fitted_normal(b).norm_square() > 0)
+    // separates it from all the others), with 'fitted at edges' only
+    // where the bodies meet at an edge; else the largest mass's
+    const bool fitted = pass_fitted != nullptr && fitted_normal(a).norm_square() > 0 &&
+                        fitted_normal(b).norm_square() > 0 &&
+                        (parameters.normals != ContactParameters::Normals::fitted_at_edges ||
+                         meet_at_edge(normal_a, normal_b));
+    if (fitted)
       common = fitted_normal(a) - fitted_normal(b);
     else if (parameters.normals == ContactParameters::Normals::largest_mass ||
-             parameters.normals == ContactParameters::Normals::logistic_regression)
+             parameters.normals == ContactParameters::Normals::logistic_regression ||
+             parameters.normals == ContactParameters::Normals::fitted_at_edges)
       {
         // the normal of the body with more mass at the node, whose surface
         // the node resolves better: a flat plane's, not a block corner's;

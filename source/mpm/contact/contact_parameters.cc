@@ -18,7 +18,8 @@ namespace sable::mpm
       {"mass weighted", ContactParameters::Normals::mass_weighted},
       {"average", ContactParameters::Normals::average},
       {"largest mass", ContactParameters::Normals::largest_mass},
-      {"logistic regression", ContactParameters::Normals::logistic_regression}};
+      {"logistic regression", ContactParameters::Normals::logistic_regression},
+      {"fitted at edges", ContactParameters::Normals::fitted_at_edges}};
     const NamedChoice<ContactParameters::Detection> detections{
       {"shared nodes", ContactParameters::Detection::shared_nodes},
       {"surface position", ContactParameters::Detection::surface_position}};
@@ -39,11 +40,17 @@ namespace sable::mpm
                       "friction while bodies approach. bardenhagen 2001: also "
                       "while the normal traction is compressive.");
     prm.declare_entry("Normals",
-                      "largest mass",
+                      "fitted at edges",
                       normal_methods.pattern(),
                       "How the bodies' normals at a two-body node are made "
-                      "collinear (so contact conserves momentum). 'largest "
-                      "mass' (default) takes the normal of the body with the "
+                      "collinear (so contact conserves momentum). 'fitted at "
+                      "edges' (default) is 'largest mass' where the two "
+                      "bodies' directions face each other (more than about "
+                      "154 degrees apart: faces in contact, round bodies) and "
+                      "'logistic regression' where they do not (corners and "
+                      "ends within one node's reach, as where a block passes "
+                      "the front end of the block it slides on). 'largest "
+                      "mass' takes the normal of the body with the "
                       "larger mass at the node, whose surface the node "
                       "resolves better: a block sliding on a plane body then "
                       "meets the plane's normal, not its own corner's tilted "

@@ -14,7 +14,8 @@ namespace sable::mpm
     : parameters(parameters)
     , with_traction(parameters.model == ContactParameters::Model::bardenhagen_2001)
     , with_position(parameters.detection == ContactParameters::Detection::surface_position)
-    , with_regression(parameters.normals == ContactParameters::Normals::logistic_regression)
+    , with_regression(parameters.normals == ContactParameters::Normals::logistic_regression ||
+                      parameters.normals == ContactParameters::Normals::fitted_at_edges)
     , model(parameters, body_groups)
   {}
 
@@ -119,6 +120,21 @@ namespace sable::mpm
   {
     const std::vector<unsigned int> &nodes = fields.get_contact_nodes();
     fitted_normals.resize(fields.n_all_records());
+    // with 'fitted at edges' a node's planes are fitted only where two of
+    // its bodies meet at an edge
+    const bool only_at_edges = parameters.normals == ContactParameters::Normals::fitted_at_edges;
+    const auto direction     = [](const Record &r) {
+      const double norm = r.mass_gradient.norm();
+      return norm > 0 ? Tensor<1, dim>(r.mass_gradient / norm) : Tensor<1, dim>();
+    };
+    const auto any_meet_at_edge = [&](const Record *begin, const Record *end) {
+      for (const Record *a = begin; a != end; ++a)
+        for (const Record *b = a + 1; b != end; ++b)
+          if (a->mass > 0 && b->mass > 0 &&
+              BardenhagenContact<dim>::meet_at_edge(direction(*a), direction(*b)))
+            return true;
+      return false;
+    };
     parallel::apply_to_subranges(
       0u,
       static_cast<unsigned int>(nodes.size()),
@@ -132,6 +148,12 @@ namespace sable::mpm
             const auto [begin, end]            = fields.node_records(node);
             const std::size_t     first_record = fields.index_of(*begin);
             const std::size_t     n_records    = end - begin;
+            if (only_at_edges && !any_meet_at_edge(begin, end))
+              {
+                for (std::size_t r = first_record; r < first_record + n_records; ++r)
+                  fitted_normals[r] = Tensor<1, dim>();
+                continue;
+              }
             if (n_records == 2)
               {
                 // one plane for both: the fit is symmetric in the two clouds

@@ -54,7 +54,8 @@ namespace sable::mpm
      * fields of the records are accumulated, for nodes below
      * @p n_owned_nodes only, so that sums over ranks count each node once.
      * With @p node_positions also the reported pairs' moments. With
-     * @p fitted_normals ('Normals = logistic regression'), per record
+     * @p fitted_normals ('Normals = logistic regression' or 'fitted at
+     * edges'), per record
      * (BodyFields::index_of()) the unit normal out of its body of the plane
      * fitted between its points and the other bodies' at the node, zero
      * where none could be fitted.
@@ -68,6 +69,20 @@ namespace sable::mpm
           const MPI_Comm                     communicator   = MPI_COMM_SELF,
           const std::vector<Point<dim>> *    node_positions = nullptr,
           const std::vector<Tensor<1, dim>> *fitted_normals = nullptr);
+
+    /// With 'Normals = fitted at edges': whether two bodies whose unit
+    /// outward directions at a node are @p normal_a and @p normal_b meet
+    /// there at an edge, not face to face, and take the fitted plane's
+    /// normal: the directions are less than about 154 degrees apart (faces
+    /// in contact are 180 degrees apart, disks of 8 cells' radius 166 a
+    /// cell off their line of centres; a block's corner on a face 135, the
+    /// corners of two blocks whose front ends are flush 145), or one is
+    /// missing.
+    static bool
+    meet_at_edge(const Tensor<1, dim> &normal_a, const Tensor<1, dim> &normal_b)
+    {
+      return normal_a * normal_b > -0.9;
+    }
 
     /// Frictional work converted to heat so far (this rank's nodes;
     /// Statistics::contact_heat): the friction impulses times the slip the

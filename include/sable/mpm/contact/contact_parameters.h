@@ -40,9 +40,14 @@ namespace sable::mpm
       /// the normal of the plane that best separates the two bodies'
       /// points near the node (logistic regression, Nairn, Hammerquist &
       /// Smith 2020): geometry, not mass, decides
-      logistic_regression
+      logistic_regression,
+      /// 'largest mass' where the two bodies' directions face each other
+      /// (faces in contact, round bodies); the fitted plane's normal where
+      /// they do not (corners and ends within one node's reach, as where
+      /// a block passes the front end of the block it slides on)
+      fitted_at_edges
     };
-    Normals normals = Normals::largest_mass;
+    Normals normals = Normals::fitted_at_edges;
     /// Which two-body nodes may act: every node the bodies share (the
     /// papers), or only where the bodies' surfaces have met, judged from
     /// the distance between their mass centroids at the node along the
