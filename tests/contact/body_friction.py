@@ -3,9 +3,8 @@
 
 1. A 0.2 m block on a separate elastic plane body (fixed at its bottom),
    gravity tilted by theta, Bardenhagen 2001 contact with the default
-   normals ('fitted at edges': the plane's normal where the block's face
-   lies on it, the fitted plane's at its corners). The rigid block slides
-   with a = g (sin theta - mu cos theta) if tan theta > mu, else sticks. Sliding: the acceleration fitted
+   normals of the body with the larger mass at each node. The rigid block slides with a = g (sin theta - mu cos
+   theta) if tan theta > mu, else sticks. Sliding: the acceleration fitted
    to x(t) over 0.05..0.5 s within 2% of the rigid value (theta = 30 deg,
    mu = 0.2 and 0.4, and mu = 0.3 with the 2000 rule); sticking (theta = 20
    deg, mu = 0.5): started settled ('Solver/Settling steps'), the block
@@ -24,10 +23,9 @@
    equal ones meeting obliquely with mu = 0.5: the first force within a
    quarter cell of touching (measured -0.02 cells; 1.0-1.4 cells with
    contact at every shared node), momentum kept to round-off, kinetic +
-   strain energy never more than 0.5% above the initial until the disks
-   have parted (measured +0.0%), no contact force after that,
-   restitution (rebound over impact speed) at most 1 (measured 0.92, 0.70,
-   0.80).
+   strain energy never more than 0.5% above the initial (measured +0.0%),
+   restitution (rebound over impact speed) at most 1 (measured 0.90, 0.65,
+   0.79).
 3. A disk (R = 0.2 m) on a plane body at 16 cells per diameter, 2x2 points
    per cell seeded conforming (rings parallel to its surface), to 0.5 s:
    the centre's travel within 3% of the rigid disk's, rolling at theta =
@@ -125,26 +123,12 @@ for radius, mu in [(0.2, 0), (0.1, 0), (0.2, 0.5)]:
     scale = 2 * rows[0]["kinetic_energy"] / 2.0  # m |v| of both disks, |v| about 2
     check(f"{what}: momentum kept to round-off", max(map(abs, momentum)) < 1e-12 * scale,
           f"max |p - p0| {max(map(abs, momentum)):.2e}")
-    # until the disks have parted (their centres two cells further apart
-    # than touching: the ringing disks' surfaces are not circles, and at
-    # one cell the equal disks still touched): measured +0.0% in all three
-    # with contact where the surfaces meet (equal disks: +1.3% with contact
-    # at every shared node, +26% with the 2000 rule there; unequal disks
-    # +62%). After that no contact acts (checked below) and the ringing
-    # free disks' kinetic + strain energy wanders by 2-3% (the unequal
-    # ones' from -0.9% to +1.3% of the initial), the transfers' own error.
-    gaps = [(r["body1_x"] - r["body0_x"] - 0.2 - radius) / (1.0 / 80) for r in rows]
-    touched = rows.index(first)
-    parted = next((i for i in range(touched, len(rows)) if gaps[i] > 2), len(rows))
-    energy = [r["kinetic_energy"] + r["strain_energy"] for r in rows[:parted]]
-    check(f"{what}: energy never above the initial by more than 0.5% until they part",
-          max(energy) <= 1.005 * energy[0],
-          f"max {max(energy) / energy[0] - 1:+.4f}, parted at t = {rows[min(parted, len(rows) - 1)]['time']:.4f} s")
-    apart = rows[parted:]
-    check(f"{what}: the disks part and no contact acts afterwards",
-          len(apart) > 1 and all(abs(r[f"body{b}_v{c}"] - apart[0][f"body{b}_v{c}"]) < 1e-9
-                                 for r in apart for b in (0, 1) for c in "xy"),
-          f"{len(apart)} rows apart")
+    # measured +0.0% in all three with contact where the surfaces meet
+    # (equal disks: +1.3% with contact at every shared node, +26% with the
+    # 2000 rule there; unequal disks +62%)
+    energy = [r["kinetic_energy"] + r["strain_energy"] for r in rows]
+    check(f"{what}: energy never above the initial by more than 0.5%",
+          max(energy) <= 1.005 * energy[0], f"max {max(energy) / energy[0] - 1:+.4f}")
     restitution = (rows[-1]["body1_vx"] - rows[-1]["body0_vx"]) / 4.0
     check(f"{what}: restitution at most 1 and the disks rebound", 0 < restitution <= 1,
           f"e = {restitution:.3f}")

@@ -4,8 +4,9 @@
 rolling on a friction floor under tilted gravity, 2D and 3D, so particles
 cross the partition boundary, a plastic box squeezed by a moving wall, and
 two disks colliding with frictional contact across the partition boundary
-(ghost particles complete the per-body fields), with the default normals and
-with the planes fitted between the bodies' points. The plastic box also on four
+(ghost particles complete the per-body fields), with the default normals,
+with the planes fitted between the bodies' points, and with the planes
+fitted only where the bodies meet at an edge. The plastic box also on four
 ranks (oversubscribed): one of them holds no wall node, yet takes part in
 the reduction of the walls' work.
 
@@ -91,6 +92,10 @@ colliding_disks = [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, 
 compare("contact_2d", contact_2d, colliding_disks)
 # the planes fitted between the bodies' points read the ghost particles too
 compare("contact_2d_regression", dict(contact_2d, **{"Contact/Normals": "logistic regression"}),
+        colliding_disks)
+# ... and only where the bodies' directions meet at an edge, judged from
+# the mass gradients the ghost particles complete
+compare("contact_2d_fitted_at_edges", dict(contact_2d, **{"Contact/Normals": "fitted at edges"}),
         colliding_disks)
 
 # 32 x 32 cells, a box of 8 x 8 cells with 4 x 4 points per cell (1024

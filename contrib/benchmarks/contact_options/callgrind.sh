@@ -59,6 +59,7 @@ PRM
 variants=("defaults|"
           "Detection = shared nodes|  set Detection = shared nodes"
           "Normals = mass weighted|  set Normals = mass weighted"
+          "Normals = fitted at edges|  set Normals = fitted at edges"
           "Normals = logistic regression|  set Normals = logistic regression"
           "Nodes with three or more bodies = centre of mass|  set Nodes with three or more bodies = centre of mass"
           "Model = bardenhagen 2000|  set Model = bardenhagen 2000"

@@ -11,8 +11,11 @@
 // Usage: contact_scaling [cells per direction = 256] [steps = 40]
 //                        [pairwise (default) | centre-of-mass]
 //                        [grains per side: only this tiling] [timings]
+//                        [normals=NAME]
 // (the treatment of nodes with three or more bodies; 'timings' prints the
-// wall time of each phase of the timed steps of every run)
+// wall time of each phase of the timed steps of every run; 'normals=' a
+// 'Contact/Normals' other than the default, with '-' for ' ', as in
+// normals=largest-mass)
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
@@ -32,6 +35,8 @@ using namespace sable::mpm;
 
 namespace
 {
+  ContactParameters::Normals normals = ContactParameters().normals;
+
   double
   seconds_per_step(const unsigned int n_cells,
                    const unsigned int n_grains_per_side,
@@ -56,6 +61,7 @@ namespace
     parameters.contact.model    = model;
     parameters.contact.friction = 0.3;
     parameters.contact.multi_body_nodes = multi_body_nodes;
+    parameters.contact.normals          = normals;
     for (unsigned int b = 0; b < 4; ++b)
       parameters.boundaries[b].type = BoundaryType::slip;
 
@@ -110,6 +116,24 @@ main(int argc, char **argv)
   if (argc > 4)
     tilings = {static_cast<unsigned int>(std::stoi(argv[4]))};
   const bool print_timings = argc > 5 && std::string(argv[5]) == "timings";
+  for (int i = 1; i < argc; ++i)
+    {
+      const std::string argument = argv[i];
+      if (argument == "normals=largest-mass")
+        normals = ContactParameters::Normals::largest_mass;
+      else if (argument == "normals=logistic-regression")
+        normals = ContactParameters::Normals::logistic_regression;
+      else if (argument == "normals=mass-weighted")
+        normals = ContactParameters::Normals::mass_weighted;
+      else if (argument.rfind("normals=", 0) == 0 && argument != "normals=fitted-at-edges")
+        {
+          std::cerr << "contact_scaling: unknown " << argument
+                    << " (allowed: fitted-at-edges, largest-mass, logistic-regression, "
+                       "mass-weighted)"
+                    << std::endl;
+          return 1;
+        }
+    }
   for (const unsigned int per_side : tilings)
     {
       unsigned long long n_particles = 0;

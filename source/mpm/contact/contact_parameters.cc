@@ -40,17 +40,11 @@ namespace sable::mpm
                       "friction while bodies approach. bardenhagen 2001: also "
                       "while the normal traction is compressive.");
     prm.declare_entry("Normals",
-                      "fitted at edges",
+                      "largest mass",
                       normal_methods.pattern(),
                       "How the bodies' normals at a two-body node are made "
-                      "collinear (so contact conserves momentum). 'fitted at "
-                      "edges' (default) is 'largest mass' where the two "
-                      "bodies' directions face each other (more than about "
-                      "154 degrees apart: faces in contact, round bodies) and "
-                      "'logistic regression' where they do not (corners and "
-                      "ends within one node's reach, as where a block passes "
-                      "the front end of the block it slides on). 'largest "
-                      "mass' takes the normal of the body with the "
+                      "collinear (so contact conserves momentum). 'largest "
+                      "mass' (default) takes the normal of the body with the "
                       "larger mass at the node, whose surface the node "
                       "resolves better: a block sliding on a plane body then "
                       "meets the plane's normal, not its own corner's tilted "
@@ -67,7 +61,14 @@ namespace sable::mpm
                       "(Nairn, Hammerquist & Smith 2020; at nodes of three "
                       "or more bodies each body against the others) and "
                       "takes its normal: slower, and independent of the "
-                      "bodies' masses at the node.");
+                      "bodies' masses at the node. 'fitted at edges' is "
+                      "'largest mass' where the two bodies' directions face "
+                      "each other (more than about 154 degrees apart: faces "
+                      "in contact, round bodies) and 'logistic regression' "
+                      "where they do not (corners and ends within one node's "
+                      "reach, as where a block passes the front end of the "
+                      "block it slides on; choose it for blocks and other "
+                      "bodies with corners).");
     prm.declare_entry("Detection",
                       "surface position",
                       detections.pattern(),

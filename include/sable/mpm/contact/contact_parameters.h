@@ -47,7 +47,7 @@ namespace sable::mpm
       /// a block passes the front end of the block it slides on)
       fitted_at_edges
     };
-    Normals normals = Normals::fitted_at_edges;
+    Normals normals = Normals::largest_mass;
     /// Which two-body nodes may act: every node the bodies share (the
     /// papers), or only where the bodies' surfaces have met, judged from
     /// the distance between their mass centroids at the node along the
