@@ -109,9 +109,6 @@ main(int argc, char **argv)
   const auto         multi_body_nodes = argc > 3 && std::string(argv[3]) == "centre-of-mass" ?
                                           ContactParameters::MultiBodyNodes::centre_of_mass :
                                           ContactParameters::MultiBodyNodes::pairwise;
-  std::cout << "| grains | material points | contact none, s/step | bardenhagen 2001, s/step | "
-               "contact / none | momentum defect / correction |\n|---|---|---|---|---|---|"
-            << std::endl;
   std::vector<unsigned int> tilings = {1u, 4u, 10u, 32u, 100u};
   if (argc > 4)
     tilings = {static_cast<unsigned int>(std::stoi(argv[4]))};
@@ -125,7 +122,9 @@ main(int argc, char **argv)
         normals = ContactParameters::Normals::logistic_regression;
       else if (argument == "normals=mass-weighted")
         normals = ContactParameters::Normals::mass_weighted;
-      else if (argument.rfind("normals=", 0) == 0 && argument != "normals=fitted-at-edges")
+      else if (argument == "normals=fitted-at-edges")
+        normals = ContactParameters::Normals::fitted_at_edges;
+      else if (argument.rfind("normals=", 0) == 0)
         {
           std::cerr << "contact_scaling: unknown " << argument
                     << " (allowed: fitted-at-edges, largest-mass, logistic-regression, "
@@ -134,6 +133,9 @@ main(int argc, char **argv)
           return 1;
         }
     }
+  std::cout << "| grains | material points | contact none, s/step | bardenhagen 2001, s/step | "
+               "contact / none | momentum defect / correction |\n|---|---|---|---|---|---|"
+            << std::endl;
   for (const unsigned int per_side : tilings)
     {
       unsigned long long n_particles = 0;
