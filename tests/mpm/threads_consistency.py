@@ -15,8 +15,8 @@ gather and the stress update (each point's own data only).
    refined at body surfaces and contacts every 4 steps, so that cells with
    hanging nodes scatter through the folded shape functions, and nodes with
    three bodies occur; pair forces of all six pairs are reported. The
-   same pile with 'Contact/Normals = logistic regression' (one and two
-   threads).
+   same pile with 'Contact/Normals = logistic regression' and with
+   'fitted at edges' (one and two threads).
 
 A bad thread count stops with a message naming the option."""
 import csv
@@ -101,6 +101,14 @@ code, output, one = run_with("fitted_one", [], {"SABLE_THREADS": ""}, fitted_sce
 check("pile, logistic-regression normals, one thread: runs", code == 0, output[-300:])
 code, output, text = run_with("fitted_two", ["--threads", "2"], {}, fitted_scene)
 check("pile, logistic-regression normals, two threads: same statistics.csv as one thread",
+      code == 0 and text == one and one.count("\n") > 20, output[-300:])
+# ... and only where two bodies meet at an edge, which the nodes decide
+# from their complete mass gradients
+edges_scene = (dict(pile_entries, **{"Contact/Normals": "fitted at edges"}), pile)
+code, output, one = run_with("edges_one", [], {"SABLE_THREADS": ""}, edges_scene)
+check("pile, normals fitted at edges, one thread: runs", code == 0, output[-300:])
+code, output, text = run_with("edges_two", ["--threads", "2"], {}, edges_scene)
+check("pile, normals fitted at edges, two threads: same statistics.csv as one thread",
       code == 0 and text == one and one.count("\n") > 20, output[-300:])
 
 code, output, _ = run_with("bad", ["--threads", "two"], {})
