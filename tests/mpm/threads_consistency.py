@@ -95,21 +95,16 @@ for name, arguments, environment in (("pile_two", ["--threads", "2"], {}),
           output[-300:])
 # the same pile with the planes fitted between the bodies' points: each
 # node's samples come colour by colour, so their order, and the fit, does
-# not depend on the threads either
-fitted_scene = (dict(pile_entries, **{"Contact/Normals": "logistic regression"}), pile)
-code, output, one = run_with("fitted_one", [], {"SABLE_THREADS": ""}, fitted_scene)
-check("pile, logistic-regression normals, one thread: runs", code == 0, output[-300:])
-code, output, text = run_with("fitted_two", ["--threads", "2"], {}, fitted_scene)
-check("pile, logistic-regression normals, two threads: same statistics.csv as one thread",
-      code == 0 and text == one and one.count("\n") > 20, output[-300:])
-# ... and only where two bodies meet at an edge, which the nodes decide
-# from their complete mass gradients
-edges_scene = (dict(pile_entries, **{"Contact/Normals": "fitted at edges"}), pile)
-code, output, one = run_with("edges_one", [], {"SABLE_THREADS": ""}, edges_scene)
-check("pile, normals fitted at edges, one thread: runs", code == 0, output[-300:])
-code, output, text = run_with("edges_two", ["--threads", "2"], {}, edges_scene)
-check("pile, normals fitted at edges, two threads: same statistics.csv as one thread",
-      code == 0 and text == one and one.count("\n") > 20, output[-300:])
+# not depend on the threads either; with 'fitted at edges' only where two
+# bodies meet at an edge, which the nodes decide from their complete mass
+# gradients
+for normals, tag in (("logistic regression", "fitted"), ("fitted at edges", "edges")):
+    scene = (dict(pile_entries, **{"Contact/Normals": normals}), pile)
+    code, output, one = run_with(f"{tag}_one", [], {"SABLE_THREADS": ""}, scene)
+    check(f"pile, Normals = {normals}, one thread: runs", code == 0, output[-300:])
+    code, output, text = run_with(f"{tag}_two", ["--threads", "2"], {}, scene)
+    check(f"pile, Normals = {normals}, two threads: same statistics.csv as one thread",
+          code == 0 and text == one and one.count("\n") > 20, output[-300:])
 
 code, output, _ = run_with("bad", ["--threads", "two"], {})
 check("--threads two: refused with exit code 2", code == 2 and "--threads" in output and "two" in output,
