@@ -68,7 +68,9 @@ namespace sable::mpm
                       "where they do not (corners and ends within one node's "
                       "reach, as where a block passes the front end of the "
                       "block it slides on; choose it for blocks and other "
-                      "bodies with corners).");
+                      "bodies with corners); at such nodes contact acts only "
+                      "while the bodies approach, without the 2001 rule's "
+                      "release by traction.");
     prm.declare_entry("Detection",
                       "surface position",
                       detections.pattern(),

@@ -224,6 +224,14 @@ namespace sable::mpm
                 const Tensor<1, dim> &                  normal_a,
                 const Tensor<1, dim> &                  normal_b) const;
 
+    /// With 'Normals = fitted at edges': whether two bodies with unit
+    /// outward directions @p normal_a and @p normal_b at a node meet there
+    /// at an edge, where contact acts only while they approach (the 2000
+    /// rule; the 2001 rule's release by traction acts where they face
+    /// each other).
+    bool
+    approach_only_at_edge(const Tensor<1, dim> &normal_a, const Tensor<1, dim> &normal_b) const;
+
     /// With 'Detection = surface position': whether the surfaces of the
     /// bodies of @p a and @p b, closing at @p closing along @p normal (out
     /// of a), meet within the step.

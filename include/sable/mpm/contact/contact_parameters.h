@@ -44,7 +44,8 @@ namespace sable::mpm
       /// 'largest mass' where the two bodies' directions face each other
       /// (faces in contact, round bodies); the fitted plane's normal where
       /// they do not (corners and ends within one node's reach, as where
-      /// a block passes the front end of the block it slides on)
+      /// a block passes the front end of the block it slides on), and
+      /// there contact acts only while the bodies approach
       fitted_at_edges
     };
     Normals normals = Normals::largest_mass;
