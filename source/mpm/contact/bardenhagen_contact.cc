@@ -318,10 +318,7 @@ namespace sable::mpm
     // body's particles towards the node, out of the body (it is minus
     // the gradient of the body's mass density)
     for (unsigned int a = 0; a < n; ++a)
-      {
-        const double norm = begin[a].mass_gradient.norm();
-        normal[a] = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
-      }
+      normal[a] = begin[a].outward_direction();
     const bool release_by_approach_only =
       n == 2 && approach_only_at_edge(normal[0], normal[1]);
     if (n == 2)
@@ -627,8 +624,7 @@ namespace sable::mpm
     double total_mass = 0;
     for (unsigned int a = 0; a < n; ++a)
       {
-        const double norm = begin[a].mass_gradient.norm();
-        normal[a]   = norm > 0 ? begin[a].mass_gradient / norm : Tensor<1, dim>();
+        normal[a]   = begin[a].outward_direction();
         velocity[a] = begin[a].new_velocity;
         total_mass += begin[a].mass;
       }

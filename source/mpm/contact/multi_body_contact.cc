@@ -123,15 +123,11 @@ namespace sable::mpm
     // with 'fitted at edges' a node's planes are fitted only where two of
     // its bodies meet at an edge
     const bool only_at_edges = parameters.normals == ContactParameters::Normals::fitted_at_edges;
-    const auto direction     = [](const Record &r) {
-      const double norm = r.mass_gradient.norm();
-      return norm > 0 ? Tensor<1, dim>(r.mass_gradient / norm) : Tensor<1, dim>();
-    };
-    const auto any_meet_at_edge = [&](const Record *begin, const Record *end) {
+    const auto any_meet_at_edge = [](const Record *begin, const Record *end) {
       for (const Record *a = begin; a != end; ++a)
         for (const Record *b = a + 1; b != end; ++b)
           if (a->mass > 0 && b->mass > 0 &&
-              BardenhagenContact<dim>::meet_at_edge(direction(*a), direction(*b)))
+              BardenhagenContact<dim>::meet_at_edge(a->outward_direction(), b->outward_direction()))
             return true;
       return false;
     };

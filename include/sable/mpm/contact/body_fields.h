@@ -61,6 +61,15 @@ namespace sable::mpm
       /// whether the wall on axis d acted
       Tensor<1, dim> wall_slip;
       unsigned int   wall_acted = 0;
+
+      /// The body's unit outward direction at the node, mass_gradient
+      /// normalised (zero where it vanishes).
+      Tensor<1, dim>
+      outward_direction() const
+      {
+        const double norm = mass_gradient.norm();
+        return norm > 0 ? Tensor<1, dim>(mass_gradient / norm) : Tensor<1, dim>();
+      }
     };
 
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;

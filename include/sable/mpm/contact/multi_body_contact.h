@@ -233,7 +233,8 @@ namespace sable::mpm
 
     /// With 'Normals = logistic regression': each record's fitted normal
     /// from the points sampled at its node (threaded over the contact
-    /// nodes; each node is fitted on its own).
+    /// nodes; each node is fitted on its own); with 'fitted at edges' only
+    /// at nodes where two bodies meet at an edge, zero elsewhere.
     void
     fit_separating_planes(const Grid<dim> &grid);
 
