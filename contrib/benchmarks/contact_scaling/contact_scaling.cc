@@ -17,12 +17,14 @@
 // 'Contact/Normals' other than the default, with '-' for ' ', as in
 // normals=largest-mass)
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
 
 #include <sable/mpm/run_scene.h>
 #include <sable/mpm/simulator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -114,25 +116,27 @@ main(int argc, char **argv)
     tilings = {static_cast<unsigned int>(std::stoi(argv[4]))};
   const bool print_timings = argc > 5 && std::string(argv[5]) == "timings";
   for (int i = 1; i < argc; ++i)
-    {
-      const std::string argument = argv[i];
-      if (argument == "normals=largest-mass")
-        normals = ContactParameters::Normals::largest_mass;
-      else if (argument == "normals=logistic-regression")
-        normals = ContactParameters::Normals::logistic_regression;
-      else if (argument == "normals=mass-weighted")
-        normals = ContactParameters::Normals::mass_weighted;
-      else if (argument == "normals=fitted-at-edges")
-        normals = ContactParameters::Normals::fitted_at_edges;
-      else if (argument.rfind("normals=", 0) == 0)
-        {
-          std::cerr << "contact_scaling: unknown " << argument
-                    << " (allowed: fitted-at-edges, largest-mass, logistic-regression, "
-                       "mass-weighted)"
-                    << std::endl;
-          return 1;
-        }
-    }
+    if (std::string argument = argv[i]; argument.rfind("normals=", 0) == 0)
+      {
+        // read as the scene files' 'Contact/Normals' is
+        std::string name = argument.substr(8);
+        std::replace(name.begin(), name.end(), '-', ' ');
+        ParameterHandler prm;
+        ContactParameters::declare_parameters(prm);
+        try
+          {
+            prm.set("Normals", name);
+          }
+        catch (const ExceptionBase &error)
+          {
+            std::cerr << "contact_scaling: " << argument << ": ";
+            error.print_info(std::cerr);
+            return 1;
+          }
+        ContactParameters contact;
+        contact.parse_parameters(prm, 0);
+        normals = contact.normals;
+      }
   std::cout << "| grains | material points | contact none, s/step | bardenhagen 2001, s/step | "
                "contact / none | momentum defect / correction |\n|---|---|---|---|---|---|"
             << std::endl;
