@@ -84,8 +84,13 @@ namespace sable::mpm
                                   typename Grid<dim>::Shape &              shape,
                                   Tensor<1, dim> *                         velocities,
                                   const auto                               affine) {
-      const bool near_contact = contact != nullptr && contact->touches(grid.cell_nodes(*cell.data));
-      if (!cell.owned && !near_contact)
+      const auto nodes        = grid.cell_nodes(*cell.data);
+      const bool near_contact = contact != nullptr && contact->touches(nodes);
+      // where the contact's records replace the single field at every node
+      // of the cell, nothing would read what the cell added to it
+      const bool single_field =
+        cell.owned && !(near_contact && contact->replaces_single_field(nodes));
+      if (!single_field && !near_contact)
         return;
       for (const auto &particle : cell.particles)
         {
@@ -100,7 +105,7 @@ namespace sable::mpm
             if (near_contact)
               contact->template scatter<pass>(
                 props, particle.get_location(), shape, velocity_at, volume_stress);
-            if (cell.owned)
+            if (single_field)
               add_to_single_field(particle, props, shape, velocity_at, volume_stress);
           };
           if constexpr (decltype(affine)::value)

@@ -474,7 +474,7 @@ namespace sable::mpm
     if (contact)
       {
         TimerOutput::Scope scope(timer, "find contact nodes (in particles to grid)");
-        contact->mark_contact_nodes(particle_cells, grid, layout);
+        contact->mark_contact_nodes(particle_cells, grid, layout, boundary_conditions);
       }
     particle_to_grid.template scatter<GridPass::momentum_update>(particle_cells,
                                                                  grid,

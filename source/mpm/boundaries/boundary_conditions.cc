@@ -63,6 +63,9 @@ namespace sable::mpm
                                     return key(a) == key(b);
                                   }),
                       constraints.end());
+    constrained.assign(grid.n_relevant_nodes(), false);
+    for (const NodeConstraint &c : constraints)
+      constrained[c.node] = true;
   }
 
   template <int dim>

@@ -21,10 +21,12 @@ namespace sable::mpm
 
   template <int dim>
   void
-  MultiBodyContact<dim>::mark_contact_nodes(const ParticleCells<dim> & cells,
-                                            const Grid<dim> &          grid,
-                                            const ParticleLayout<dim> &layout)
+  MultiBodyContact<dim>::mark_contact_nodes(const ParticleCells<dim> &      cells,
+                                            const Grid<dim> &               grid,
+                                            const ParticleLayout<dim> &     layout,
+                                            const BoundaryConditions<dim> & boundary_conditions)
   {
+    wall_nodes = &boundary_conditions.constrained_nodes();
     fields.clear(grid.n_relevant_nodes());
     const bool gimp = grid.get_shape_functions() == ShapeFunctions::gimp;
     // with linear shape functions, the bodies of each cell's points, kept

@@ -139,6 +139,16 @@ namespace sable::mpm
       return constraints.empty();
     }
 
+    /// Per relevant node: whether a wall's condition acts there (setup()).
+    /// At those nodes the walls read the single field even where contact
+    /// keeps per-body records (a moving wall's work, a friction wall's
+    /// reach).
+    const std::vector<bool> &
+    constrained_nodes() const
+    {
+      return constrained;
+    }
+
   private:
     struct NodeConstraint
     {
@@ -184,6 +194,8 @@ namespace sable::mpm
 
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
     std::vector<NodeConstraint>                            constraints;
+    /// per relevant node: whether some constraint acts there
+    std::vector<bool> constrained;
     /// per constraint: the tangential speed a friction wall left in the
     /// last apply(), -1 where it did not act
     std::vector<double> slip_left;

@@ -47,10 +47,13 @@ namespace sable::mpm
 
     /// Find this step's contact nodes (bodies per node) and create their
     /// zeroed records; threaded over the coloured cells with points.
+    /// @p boundary_conditions: the walls, whose nodes keep the single
+    /// field (replaces_single_field()).
     void
-    mark_contact_nodes(const ParticleCells<dim> & cells,
-                       const Grid<dim> &          grid,
-                       const ParticleLayout<dim> &layout);
+    mark_contact_nodes(const ParticleCells<dim> &       cells,
+                       const Grid<dim> &                grid,
+                       const ParticleLayout<dim> &      layout,
+                       const BoundaryConditions<dim> &  boundary_conditions);
 
     /// Zero the records' mass, momentum and force for a second scatter
     /// (MUSL's remapped momenta) on the same contact nodes.
@@ -74,6 +77,20 @@ namespace sable::mpm
     /// nodes of @p shape, component d of its velocity as node v sees it
     /// being velocity_at(v, d) (ParticleToGrid). Cells of one colour may
     /// call this concurrently.
+    /// Whether nothing reads the single field at any of @p nodes: each is
+    /// a contact node, where every point reads its body's record, and no
+    /// wall acts there. A cell all of whose nodes are such need not
+    /// scatter into the single field (in a dense pack of small grains,
+    /// most cells).
+    bool
+    replaces_single_field(const std::pair<const unsigned int *, unsigned int> &nodes) const
+    {
+      for (unsigned int k = 0; k < nodes.second; ++k)
+        if (!fields.is_contact_node(nodes.first[k]) || (*wall_nodes)[nodes.first[k]])
+          return false;
+      return true;
+    }
+
     template <GridPass pass, typename VelocityAt>
     void
     scatter(const ArrayView<const double> &   properties,
@@ -255,6 +272,9 @@ namespace sable::mpm
     const bool              with_position;
     const bool              with_regression;
     BodyFields<dim>         fields;
+    /// per relevant node, whether a wall acts there (from
+    /// mark_contact_nodes())
+    const std::vector<bool> *wall_nodes = nullptr;
     /// with_regression: per record, its body's points around the node
     /// (their storage kept from step to step), and the normal out of its
     /// body of the plane fitted between them and the other bodies' points
