@@ -36,6 +36,15 @@
 //    centre drifts sideways by less than 1e-3 of a cell and kinetic +
 //    strain + gravitational energy never exceeds its initial value by more
 //    than 1e-3 of the disk's weight times one cell.
+// 5. The pairs' geometry kept by one pass and reused by the next
+//    (BardenhagenContact::Geometry, MUSL's remap pass): on 600 random
+//    contact nodes of two to four bodies (three chunks of the kernel's
+//    loop; random masses, mass gradients, positions, spacings, stresses and
+//    velocities, so that pairs act by approach, by traction and not at
+//    all), a pass that keeps the geometry gives the velocities a pass that
+//    computes it gives, and a second pass on new velocities that reuses it
+//    gives those of one that computes it again: bit for bit, in 2D and 3D,
+//    for the 2001 and 2000 rules.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -50,8 +59,9 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <sstream>
 #include <limits>
+#include <random>
+#include <sstream>
 
 #include "test_support.h"
 
@@ -369,6 +379,128 @@ namespace
       }
   }
 
+  /// Random contact nodes (see 5. above) in @p fields.
+  template <int dim>
+  void
+  random_contact_nodes(BodyFields<dim> &fields, const unsigned int n_nodes, std::mt19937 &random)
+  {
+    std::uniform_real_distribution<> unit(-1., 1.);
+    std::uniform_int_distribution<>  n_bodies(2, 4);
+    fields.clear(n_nodes);
+    for (unsigned int node = 0; node < n_nodes; ++node)
+      {
+        std::vector<unsigned int> bodies = {0, 1, 2, 3, 4, 5};
+        std::shuffle(bodies.begin(), bodies.end(), random);
+        bodies.resize(n_bodies(random));
+        for (const unsigned int body : bodies)
+          fields.add(node, body);
+      }
+    fields.allocate();
+    for (const unsigned int node : fields.get_contact_nodes())
+      {
+        const auto [begin, end] = fields.node_records(node);
+        for (auto *r = begin; r != end; ++r)
+          {
+            r->mass = 1. + unit(random);
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                r->mass_gradient[d] = unit(random);
+                // centroids within about a cell of the node (cells of 0.1)
+                r->mass_position[d] = r->mass * 0.1 * unit(random);
+                r->new_velocity[d]  = unit(random);
+                for (unsigned int e = d; e < dim; ++e)
+                  r->mass_stress[d][e] = 1e3 * unit(random);
+              }
+            r->mass_spacing = r->mass * 0.05;
+          }
+      }
+  }
+
+  template <int dim>
+  void
+  kept_geometry(const Model model)
+  {
+    using Geometry = typename BardenhagenContact<dim>::Geometry;
+    ContactParameters parameters;
+    parameters.model    = model;
+    parameters.friction = 0.3;
+    const std::vector<unsigned int> groups(6, 0);
+    BardenhagenContact<dim>         keeping(parameters, groups), computing(parameters, groups);
+    std::mt19937                    random(2026);
+    const unsigned int              n_nodes = 600;
+    BodyFields<dim>                 kept, computed;
+    random_contact_nodes(kept, n_nodes, random);
+    computed = kept;
+    Tensor<1, dim> size;
+    for (unsigned int d = 0; d < dim; ++d)
+      size[d] = 0.1;
+    const std::vector<Tensor<1, dim>> spacing(n_nodes, size);
+    const double                      dt = 1e-3;
+
+    const auto same_velocities = [&]() {
+      bool same = true;
+      for (const unsigned int node : kept.get_contact_nodes())
+        {
+          const auto [a, a_end] = kept.node_records(node);
+          const auto [b, b_end] = computed.node_records(node);
+          for (unsigned int i = 0; i < static_cast<unsigned int>(a_end - a); ++i)
+            same = same && a[i].new_velocity == b[i].new_velocity;
+        }
+      return same;
+    };
+    std::vector<Tensor<1, dim>> before;
+    const auto remember = [&]() {
+      before.clear();
+      for (const unsigned int node : kept.get_contact_nodes())
+        {
+          const auto [a, a_end] = kept.node_records(node);
+          for (auto *r = a; r != a_end; ++r)
+            before.push_back(r->new_velocity);
+        }
+    };
+    const auto n_changed = [&]() {
+      unsigned int n = 0, i = 0;
+      for (const unsigned int node : kept.get_contact_nodes())
+        {
+          const auto [a, a_end] = kept.node_records(node);
+          for (auto *r = a; r != a_end; ++r)
+            n += r->new_velocity != before[i++];
+        }
+      return n;
+    };
+    const std::string name = "kept geometry, " + std::to_string(dim) + "D, " +
+                             (model == Model::bardenhagen_2001 ? "2001" : "2000") + " rule";
+
+    remember();
+    keeping.apply(kept, spacing, dt, n_nodes, true, MPI_COMM_SELF, nullptr, nullptr, Geometry::keep);
+    computing.apply(computed, spacing, dt, n_nodes, true);
+    const unsigned int first_changed = n_changed();
+    check(name + ": a pass that keeps it corrects as one that does not (" +
+            std::to_string(first_changed) + " of " + std::to_string(before.size()) +
+            " records corrected)",
+          same_velocities() && first_changed > 0 && first_changed < before.size());
+
+    // new velocities, the same for both
+    for (const unsigned int node : kept.get_contact_nodes())
+      {
+        const auto [a, a_end] = kept.node_records(node);
+        const auto [b, b_end] = computed.node_records(node);
+        for (unsigned int i = 0; i < static_cast<unsigned int>(a_end - a); ++i)
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              a[i].new_velocity[d] = std::uniform_real_distribution<>(-1., 1.)(random);
+            b[i].new_velocity = a[i].new_velocity;
+          }
+      }
+    remember();
+    keeping.apply(kept, spacing, dt, n_nodes, false, MPI_COMM_SELF, nullptr, nullptr, Geometry::reuse);
+    computing.apply(computed, spacing, dt, n_nodes, false);
+    const unsigned int second_changed = n_changed();
+    check(name + ": a pass that reuses it corrects as one that computes it again (" +
+            std::to_string(second_changed) + " records corrected)",
+          same_velocities() && second_changed > 0);
+  }
+
   void
   resting_grain()
   {
@@ -416,5 +548,10 @@ main(int argc, char **argv)
   release_logic();
   impulse_scaling();
   resting_grain();
+  for (const Model model : {Model::bardenhagen_2001, Model::bardenhagen_2000})
+    {
+      kept_geometry<2>(model);
+      kept_geometry<3>(model);
+    }
   return sable_tests::exit_code();
 }

@@ -55,10 +55,12 @@ namespace sable::mpm
                                  const bool                         record_forces,
                                  const MPI_Comm                     communicator,
                                  const std::vector<Point<dim>> *    node_positions,
-                                 const std::vector<Tensor<1, dim>> *fitted_normals)
+                                 const std::vector<Tensor<1, dim>> *fitted_normals,
+                                 const Geometry                     geometry)
   {
-    pass_fields = &fields;
-    pass_fitted = fitted_normals;
+    pass_fields   = &fields;
+    pass_fitted   = fitted_normals;
+    pass_geometry = geometry;
     // Each node changes only its own records, so the chunks of nodes run in
     // parallel; what each node adds to the sums is kept and added node by
     // node at the end, the same way for any number of threads.
@@ -146,6 +148,20 @@ namespace sable::mpm
     const unsigned int               n_nodes =
       std::min<unsigned int>(first + chunk_size, nodes.size()) - first;
     ChunkResults &results = chunk_results[chunk];
+    if (pass_geometry == Geometry::keep)
+      {
+        results.geometry_offsets.resize(n_nodes);
+        unsigned int n_pairs = 0;
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          {
+            results.geometry_offsets[i] = n_pairs;
+            const auto [begin, end]     = pass.fields.node_records(nodes[first + i]);
+            n_pairs += n_kept_pairs(end - begin);
+          }
+        results.geometry.assign(n_pairs, PairGeometry());
+      }
+    Assert(pass_geometry != Geometry::reuse || results.geometry_offsets.size() == n_nodes,
+           ExcMessage("Geometry::reuse needs the contact nodes of the last apply() with keep."));
     results.node_totals.resize(n_nodes);
     results.node_pair_forces.resize(n_nodes * pair_forces.size());
     results.pair_impulses.clear();
@@ -179,6 +195,7 @@ namespace sable::mpm
     sums.pair_forces.assign(pair_forces.size(), Tensor<1, dim>());
     sums.pair_impulses.clear();
     const auto [begin, end] = pass.fields.node_records(node);
+    ChunkResults &results   = chunk_results[chunk];
     apply_at_node(begin,
                   end,
                   pass.spacing[node],
@@ -186,10 +203,12 @@ namespace sable::mpm
                   node < pass.n_owned_nodes,
                   pass.record_forces,
                   measure,
+                  pass_geometry == Geometry::compute ?
+                    nullptr :
+                    results.geometry.data() + results.geometry_offsets[index],
                   scratch,
                   sums);
 
-    ChunkResults &results      = chunk_results[chunk];
     results.node_totals[index] = {sums.frictional_heat,
                                   sums.momentum_defect,
                                   sums.momentum_correction};
@@ -273,6 +292,19 @@ namespace sable::mpm
   }
 
   template <int dim>
+  unsigned int
+  BardenhagenContact<dim>::n_kept_pairs(const unsigned int n) const
+  {
+    // the 'centre of mass' treatment of nodes of three or more bodies
+    // keeps nothing
+    if (n == 2)
+      return 1;
+    if (n > 2 && parameters.multi_body_nodes == ContactParameters::MultiBodyNodes::pairwise)
+      return n * (n - 1) / 2;
+    return 0;
+  }
+
+  template <int dim>
   void
   BardenhagenContact<dim>::apply_at_node(typename BodyFields<dim>::Record *begin,
                                          typename BodyFields<dim>::Record *end,
@@ -281,6 +313,7 @@ namespace sable::mpm
                                          const bool                        owned,
                                          const bool                        record_forces,
                                          const bool                        measure,
+                                         PairGeometry *                    geometry,
                                          Scratch &                         scratch,
                                          NodeSums &                        sums) const
   {
@@ -301,7 +334,8 @@ namespace sable::mpm
     // centre of mass
     if (n > 2 && parameters.multi_body_nodes == ContactParameters::MultiBodyNodes::pairwise)
       {
-        apply_pairwise_at_node(begin, end, spacing, dt, owned, record_forces, measure, scratch, sums);
+        apply_pairwise_at_node(
+          begin, end, spacing, dt, owned, record_forces, measure, geometry, scratch, sums);
         return;
       }
     normal.resize(n);
@@ -314,16 +348,26 @@ namespace sable::mpm
       total_momentum += r->mass * r->new_velocity;
     const Tensor<1, dim> centre_of_mass_velocity = total_momentum / total_mass;
 
+    // a two-body node's geometry from an earlier pass (Geometry::reuse)
+    const bool reuse = n == 2 && geometry != nullptr && pass_geometry == Geometry::reuse &&
+                       geometry->normal_known;
     // outward unit normals: sum_p m_p grad N_i(x_p) points from the
     // body's particles towards the node, out of the body (it is minus
     // the gradient of the body's mass density)
-    for (unsigned int a = 0; a < n; ++a)
-      normal[a] = begin[a].outward_direction();
+    if (!reuse)
+      for (unsigned int a = 0; a < n; ++a)
+        normal[a] = begin[a].outward_direction();
     const bool release_by_approach_only =
-      n == 2 && approach_only_at_edge(normal[0], normal[1]);
+      n == 2 && !reuse && approach_only_at_edge(normal[0], normal[1]);
     if (n == 2)
       {
-        const Tensor<1, dim> common = pair_normal(begin[0], begin[1], normal[0], normal[1]);
+        const Tensor<1, dim> common =
+          reuse ? geometry->normal : pair_normal(begin[0], begin[1], normal[0], normal[1]);
+        if (geometry != nullptr)
+          {
+            geometry->normal       = common;
+            geometry->normal_known = true;
+          }
         if (common.norm_square() == 0)
           return;
         normal[0] = common;
@@ -367,18 +411,25 @@ namespace sable::mpm
       {
         const double approach =
           (begin[0].new_velocity - centre_of_mass_velocity) * normal[0];
-        double mean_traction = 0;
-        if (use_traction && !release_by_approach_only)
-          mean_traction = (begin[0].mass * traction(0) + begin[1].mass * traction(1)) /
-                          total_mass;
-        node_acts = approach > 0 || mean_traction < 0;
+        if (!reuse)
+          {
+            double mean_traction = 0;
+            if (use_traction && !release_by_approach_only)
+              mean_traction = (begin[0].mass * traction(0) + begin[1].mass * traction(1)) /
+                              total_mass;
+            if (geometry != nullptr)
+              {
+                geometry->compressed       = mean_traction < 0;
+                geometry->compressed_known = true;
+              }
+            node_acts = approach > 0 || mean_traction < 0;
+          }
+        else
+          node_acts = approach > 0 || geometry->compressed;
         if (node_acts && begin[0].mass > 0 && begin[1].mass > 0 &&
             parameters.detection == ContactParameters::Detection::surface_position)
-          node_acts = surfaces_meet(begin[0],
-                                    begin[1],
-                                    normal[0],
+          node_acts = surfaces_meet(pair_gap(begin[0], begin[1], normal[0], spacing, geometry),
                                     (begin[0].new_velocity - begin[1].new_velocity) * normal[0],
-                                    spacing,
                                     dt);
       }
 
@@ -554,17 +605,33 @@ namespace sable::mpm
   }
 
   template <int dim>
-  bool
-  BardenhagenContact<dim>::surfaces_meet(const typename BodyFields<dim>::Record &a,
-                                         const typename BodyFields<dim>::Record &b,
-                                         const Tensor<1, dim> &                  normal,
-                                         const double                            closing,
-                                         const Tensor<1, dim> &                  spacing,
-                                         const double                            dt) const
+  typename BardenhagenContact<dim>::SurfaceGap
+  BardenhagenContact<dim>::pair_gap(const typename BodyFields<dim>::Record &a,
+                                    const typename BodyFields<dim>::Record &b,
+                                    const Tensor<1, dim> &                  normal,
+                                    const Tensor<1, dim> &                  spacing,
+                                    PairGeometry *                          geometry) const
+  {
+    if (geometry == nullptr)
+      return surface_gap(a, b, normal, spacing);
+    if (!geometry->gap_known)
+      {
+        geometry->gap       = surface_gap(a, b, normal, spacing);
+        geometry->gap_known = true;
+      }
+    return geometry->gap;
+  }
+
+  template <int dim>
+  typename BardenhagenContact<dim>::SurfaceGap
+  BardenhagenContact<dim>::surface_gap(const typename BodyFields<dim>::Record &a,
+                                       const typename BodyFields<dim>::Record &b,
+                                       const Tensor<1, dim> &                  normal,
+                                       const Tensor<1, dim> &                  spacing) const
   {
     // the surfaces meet within the step if the centroids' distance, less
     // what the bodies close along the normal in dt, is at most the distance
-    // they have when touching
+    // they have when touching (surfaces_meet())
     const Tensor<1, dim> between = b.mass_position / b.mass - a.mass_position / a.mass;
     double               cell    = 0;
     for (unsigned int d = 0; d < dim; ++d)
@@ -592,7 +659,7 @@ namespace sable::mpm
     const double sideways   = (between - along * normal).norm();
     const double beyond     = sideways - sideways_tolerance * std::sqrt(cell);
     const double separation = along > 0 && beyond > 0 ? std::hypot(along, beyond) : along;
-    return separation - dt * std::max(closing, 0.) <= touching;
+    return {separation, touching};
   }
 
   template <int dim>
@@ -604,11 +671,16 @@ namespace sable::mpm
                                                   const bool                        owned,
                                                   const bool                        record_forces,
                                                   const bool                        measure,
+                                                  PairGeometry *                    geometry,
                                                   Scratch &                         scratch,
                                                   NodeSums &                        sums) const
   {
     using Record = typename BodyFields<dim>::Record;
     const unsigned int n        = end - begin;
+    // the pairs' geometry from an earlier pass (Geometry::reuse): the
+    // bodies' directions are then needed only where it lacks a part (or
+    // for the output)
+    const bool reuse = geometry != nullptr && pass_geometry == Geometry::reuse && !record_forces;
     auto &             normal   = scratch.normal;
     auto &             velocity = scratch.own;
     auto &             change   = scratch.change;
@@ -624,32 +696,64 @@ namespace sable::mpm
     double total_mass = 0;
     for (unsigned int a = 0; a < n; ++a)
       {
-        normal[a]   = begin[a].outward_direction();
+        if (!reuse)
+          normal[a] = begin[a].outward_direction();
         velocity[a] = begin[a].new_velocity;
         total_mass += begin[a].mass;
       }
+    const auto direction = [&](const unsigned int a) {
+      return reuse ? begin[a].outward_direction() : normal[a];
+    };
 
     // each pair in turn as at a two-body node, on the velocities the pairs
     // before it left: equal and opposite impulses, so momentum is kept
+    PairGeometry *kept = geometry;
     for (unsigned int a = 0; a < n; ++a)
       for (unsigned int b = a + 1; b < n; ++b)
         {
-          const Record &ra = begin[a], &rb = begin[b];
+          PairGeometry *const pair_geometry = kept != nullptr ? kept++ : nullptr;
+          const Record &      ra = begin[a], &rb = begin[b];
           if (ra.mass <= 0 || rb.mass <= 0)
             continue;
-          const Tensor<1, dim> common = pair_normal(ra, rb, normal[a], normal[b]);
+          if (pair_geometry != nullptr && !pair_geometry->normal_known)
+            {
+              pair_geometry->normal       = pair_normal(ra, rb, direction(a), direction(b));
+              pair_geometry->normal_known = true;
+            }
+          const Tensor<1, dim> common = pair_geometry != nullptr ?
+                                          pair_geometry->normal :
+                                          pair_normal(ra, rb, normal[a], normal[b]);
           if (common.norm_square() == 0)
             continue;
           const double         pair_mass = ra.mass + rb.mass;
           const Tensor<1, dim> dv = (rb.mass / pair_mass) * (velocity[a] - velocity[b]);
           const double         dv_n = dv * common;
           bool                 acts = dv_n > 0;
-          if (use_traction && !acts && !approach_only_at_edge(normal[a], normal[b]))
-            acts = (common * (ra.mass_stress * common) + common * (rb.mass_stress * common)) /
-                     pair_mass <
-                   0;
+          if (use_traction && !acts)
+            {
+              // the pair's normal traction, where it may hold the pair
+              const auto compressed = [&]() {
+                return !approach_only_at_edge(direction(a), direction(b)) &&
+                       (common * (ra.mass_stress * common) + common * (rb.mass_stress * common)) /
+                           pair_mass <
+                         0;
+              };
+              if (pair_geometry == nullptr)
+                acts = compressed();
+              else
+                {
+                  if (!pair_geometry->compressed_known)
+                    {
+                      pair_geometry->compressed       = compressed();
+                      pair_geometry->compressed_known = true;
+                    }
+                  acts = pair_geometry->compressed;
+                }
+            }
           if (acts && parameters.detection == ContactParameters::Detection::surface_position)
-            acts = surfaces_meet(ra, rb, common, (velocity[a] - velocity[b]) * common, spacing, dt);
+            acts = surfaces_meet(pair_gap(ra, rb, common, spacing, pair_geometry),
+                                 (velocity[a] - velocity[b]) * common,
+                                 dt);
           if (!acts)
             continue;
           const double mu =

@@ -263,6 +263,16 @@ namespace sable::mpm
       hold_drivers(true, false, n_owned_nodes);
     if (momentum_update && with_regression)
       fit_separating_planes(grid);
+    // MUSL's remap pass (heat_at_remap) scatters the same masses again and
+    // keeps the momentum update's mass gradients, positions and stresses:
+    // its contact pass takes the pairs' geometry the first one kept (not
+    // with drivers, whose records are scaled and scaled back in between)
+    using Geometry          = typename BardenhagenContact<dim>::Geometry;
+    const bool both_passes  = heat_at_remap && parameters.on_momentum_update &&
+                             parameters.on_strain_update && !drivers;
+    const Geometry geometry = !both_passes    ? Geometry::compute :
+                              momentum_update ? Geometry::keep :
+                                                Geometry::reuse;
     if (momentum_update ? parameters.on_momentum_update : parameters.on_strain_update)
       model.apply(fields,
                   grid.node_spacing(),
@@ -273,7 +283,8 @@ namespace sable::mpm
                   // a moment about the origin means nothing across a
                   // periodic seam
                   grid.periodicity().any() ? nullptr : &grid.node_positions(),
-                  with_regression ? &fitted_normals : nullptr);
+                  with_regression ? &fitted_normals : nullptr,
+                  geometry);
     if (drivers)
       hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())

@@ -7,6 +7,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -43,6 +44,24 @@ namespace sable::mpm
   class BardenhagenContact
   {
   public:
+    /// What apply() does with each pair's contact geometry at a node (the
+    /// common normal, whether the pair's normal traction is compressive,
+    /// the gap between the surfaces), which depends on the records' masses,
+    /// mass gradients, mass positions and stresses but not on their
+    /// velocities. MUSL's remap pass scatters the same masses again and
+    /// keeps the rest, so its contact pass can reuse the geometry of the
+    /// momentum update's: the same numbers without computing them again.
+    enum class Geometry
+    {
+      /// compute it where needed
+      compute,
+      /// compute it and keep it for a later apply() on the same records
+      keep,
+      /// take what the last apply() with keep computed, computing only
+      /// what it did not need
+      reuse
+    };
+
     BardenhagenContact(const ContactParameters &        parameters,
                        const std::vector<unsigned int> &body_groups);
 
@@ -58,7 +77,9 @@ namespace sable::mpm
      * edges'), per record
      * (BodyFields::index_of()) the unit normal out of its body of the plane
      * fitted between its points and the other bodies' at the node, zero
-     * where none could be fitted.
+     * where none could be fitted. With @p geometry reuse, the records'
+     * masses, mass gradients, mass positions, spacings, stresses and fitted
+     * normals must be those of the last call with keep, bit for bit.
      */
     void
     apply(BodyFields<dim> &                  fields,
@@ -68,7 +89,8 @@ namespace sable::mpm
           const bool                         record_forces,
           const MPI_Comm                     communicator   = MPI_COMM_SELF,
           const std::vector<Point<dim>> *    node_positions = nullptr,
-          const std::vector<Tensor<1, dim>> *fitted_normals = nullptr);
+          const std::vector<Tensor<1, dim>> *fitted_normals = nullptr,
+          const Geometry                     geometry       = Geometry::compute);
 
     /// With 'Normals = fitted at edges': whether two bodies whose unit
     /// outward directions at a node are @p normal_a and @p normal_b meet
@@ -136,6 +158,28 @@ namespace sable::mpm
       unsigned int node = 0;
     };
 
+    /// The gap between two bodies' surfaces along a normal at a node
+    /// (surface_gap()): they touch where separation <= touching.
+    struct SurfaceGap
+    {
+      double separation = 0, touching = 0;
+    };
+
+    /// A pair's contact geometry at a node, kept between apply()s
+    /// (Geometry): what each part is for, computed as it is first needed.
+    struct PairGeometry
+    {
+      /// the common unit normal out of the pair's first body (zero: the
+      /// pair has no contact there)
+      Tensor<1, dim> normal;
+      SurfaceGap     gap;
+      /// whether the 2001 rule's traction holds the pair together
+      bool compressed       = false;
+      bool normal_known     = false;
+      bool compressed_known = false;
+      bool gap_known        = false;
+    };
+
     /// What one node adds to the running sums above, and its pair impulses.
     struct NodeSums
     {
@@ -162,6 +206,11 @@ namespace sable::mpm
       /// node, and where each node's start
       std::vector<Tensor<1, dim>> saved_velocities;
       std::vector<unsigned int>   saved_offsets;
+      /// with Geometry::keep, the pairs' geometry, node after node (a
+      /// two-body node one pair, a pairwise node one per pair of its
+      /// bodies), and where each node's start
+      std::vector<PairGeometry>   geometry;
+      std::vector<unsigned int>   geometry_offsets;
     };
 
     /// Per-body scratch of one node (nodes rarely hold more than a few
@@ -199,6 +248,7 @@ namespace sable::mpm
                   const bool                        owned,
                   const bool                        record_forces,
                   const bool                        measure,
+                  PairGeometry *                    geometry,
                   Scratch &                         scratch,
                   NodeSums &                        sums) const;
 
@@ -212,6 +262,7 @@ namespace sable::mpm
                            const bool                        owned,
                            const bool                        record_forces,
                            const bool                        measure,
+                           PairGeometry *                    geometry,
                            Scratch &                         scratch,
                            NodeSums &                        sums) const;
 
@@ -232,16 +283,34 @@ namespace sable::mpm
     bool
     approach_only_at_edge(const Tensor<1, dim> &normal_a, const Tensor<1, dim> &normal_b) const;
 
-    /// With 'Detection = surface position': whether the surfaces of the
-    /// bodies of @p a and @p b, closing at @p closing along @p normal (out
-    /// of a), meet within the step.
-    bool
-    surfaces_meet(const typename BodyFields<dim>::Record &a,
-                  const typename BodyFields<dim>::Record &b,
-                  const Tensor<1, dim> &                  normal,
-                  const double                            closing,
-                  const Tensor<1, dim> &                  spacing,
-                  const double                            dt) const;
+    /// With 'Detection = surface position': the gap between the surfaces
+    /// of the bodies of @p a and @p b along @p normal (out of a).
+    SurfaceGap
+    surface_gap(const typename BodyFields<dim>::Record &a,
+                const typename BodyFields<dim>::Record &b,
+                const Tensor<1, dim> &                  normal,
+                const Tensor<1, dim> &                  spacing) const;
+
+    /// surface_gap(), or with @p geometry the gap it keeps (computed and
+    /// kept there if not yet).
+    SurfaceGap
+    pair_gap(const typename BodyFields<dim>::Record &a,
+             const typename BodyFields<dim>::Record &b,
+             const Tensor<1, dim> &                  normal,
+             const Tensor<1, dim> &                  spacing,
+             PairGeometry *                          geometry) const;
+
+    /// Whether surfaces @p gap apart, closing at @p closing, meet within
+    /// @p dt.
+    static bool
+    surfaces_meet(const SurfaceGap &gap, const double closing, const double dt)
+    {
+      return gap.separation - dt * std::max(closing, 0.) <= gap.touching;
+    }
+
+    /// The number of pairs whose geometry a node of @p n bodies keeps.
+    unsigned int
+    n_kept_pairs(const unsigned int n) const;
 
     /// What every node of one call of apply() reads.
     struct Pass
@@ -300,8 +369,9 @@ namespace sable::mpm
     pair_index(const unsigned int a, const unsigned int b) const;
 
     /// The records of this apply() and their fitted normals (nullptr
-    /// without), for fitted_normal().
+    /// without), for fitted_normal(); what it does with the pairs' geometry.
     const BodyFields<dim> *            pass_fields = nullptr;
+    Geometry                           pass_geometry = Geometry::compute;
     const std::vector<Tensor<1, dim>> *pass_fitted = nullptr;
 
     /// The fitted normal of record @p r in this apply() (only with
