@@ -380,6 +380,7 @@ namespace sable::mpm
         append = Utilities::MPI::broadcast(communicator, append, 0);
       }
     setup_output(append);
+    set_contact_body_shapes();
 
     pcout << "sable MPM " << dim << "D: resumed from " << directory << " at step "
           << this->state.step_number << ", t = " << this->state.time << ": " << triangulation.n_global_active_cells()

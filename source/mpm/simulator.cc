@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -285,6 +286,8 @@ namespace sable::mpm
                     "a body large enough to hold at least one material point "
                     "on this grid");
     }
+
+    set_contact_body_shapes();
 
     // the signal speed for the first time step, and an energy scale
     double max_speed = 0, mass_wave_speed2 = 0;
@@ -926,6 +929,27 @@ namespace sable::mpm
     triangulation.repartition();
     particle_handler->unpack_after_coarsening_and_refinement();
     setup_after_mesh_change();
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::set_contact_body_shapes()
+  {
+    if (!contact)
+      return;
+    std::vector<double> volumes(parameters.bodies.size(), 0.);
+    for (const auto &particle : *particle_handler)
+      {
+        const auto props = particle.get_properties();
+        volumes[static_cast<unsigned int>(props[layout.body])] += props[layout.initial_volume];
+      }
+    Utilities::MPI::sum(volumes, communicator, volumes);
+    std::vector<double> surface_radii(parameters.bodies.size());
+    for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
+      surface_radii[b] = parameters.bodies[b].shape == BodyParameters<dim>::Shape::disk ?
+                           parameters.bodies[b].radius :
+                           std::numeric_limits<double>::infinity();
+    contact->set_body_shapes(surface_radii, volumes);
   }
 
   template <int dim>

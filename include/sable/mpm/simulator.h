@@ -300,6 +300,12 @@ namespace sable::mpm
     /// Console line: material points, cells and work per rank (min .. max).
     void
     print_balance() const;
+    /// Each body's surface radius (a disk's or sphere's radius, infinite
+    /// for other shapes) and volume (the sum of its points' initial
+    /// volumes over all ranks) to the contact, for 'Contact/Normals =
+    /// flatter body'.
+    void
+    set_contact_body_shapes();
     /// Console note where disks (spheres) seeded on the lattice meet
     /// contact: their staircase surface rolls like a polygon.
     void

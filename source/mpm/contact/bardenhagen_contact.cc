@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace sable::mpm
 {
@@ -562,6 +563,7 @@ namespace sable::mpm
     if (fitted)
       common = fitted_normal(a) - fitted_normal(b);
     else if (parameters.normals == ContactParameters::Normals::largest_mass ||
+             parameters.normals == ContactParameters::Normals::flatter_body ||
              parameters.normals == ContactParameters::Normals::logistic_regression ||
              parameters.normals == ContactParameters::Normals::fitted_at_edges)
       {
@@ -578,6 +580,19 @@ namespace sable::mpm
                                normal_a * normal_b > facing_limit;
         if (ends_meet)
           common = normal_a - normal_b;
+        else if (parameters.normals == ContactParameters::Normals::flatter_body &&
+                 !body_volumes.empty())
+          {
+            // one body's surface for the pair's whole interface: with the
+            // larger mass at each node, the normal jumps between the two
+            // bodies' surfaces across it (and a block's corner or a disk's
+            // staircase edge tilts it), which drags a sliding body and
+            // damps collisions
+            const auto flatness = [&](const unsigned int body) {
+              return std::make_tuple(body_surface_radii[body], body_volumes[body], -double(body));
+            };
+            common = flatness(a.body) > flatness(b.body) ? normal_a : Tensor<1, dim>(-normal_b);
+          }
         else
           common = a.mass >= b.mass ? normal_a : Tensor<1, dim>(-normal_b);
       }

@@ -18,6 +18,7 @@ namespace sable::mpm
       {"mass weighted", ContactParameters::Normals::mass_weighted},
       {"average", ContactParameters::Normals::average},
       {"largest mass", ContactParameters::Normals::largest_mass},
+      {"flatter body", ContactParameters::Normals::flatter_body},
       {"logistic regression", ContactParameters::Normals::logistic_regression},
       {"fitted at edges", ContactParameters::Normals::fitted_at_edges}};
     const NamedChoice<ContactParameters::Detection> detections{
@@ -40,19 +41,28 @@ namespace sable::mpm
                       "friction while bodies approach. bardenhagen 2001: also "
                       "while the normal traction is compressive.");
     prm.declare_entry("Normals",
-                      "largest mass",
+                      "flatter body",
                       normal_methods.pattern(),
                       "How the bodies' normals at a two-body node are made "
-                      "collinear (so contact conserves momentum). 'largest "
-                      "mass' (default) takes the normal of the body with the "
-                      "larger mass at the node, whose surface the node "
-                      "resolves better: a block sliding on a plane body then "
-                      "meets the plane's normal, not its own corner's tilted "
-                      "one, which plows (see doc/validation.md); where the "
-                      "two bodies' directions are less than 120 degrees "
-                      "apart (faces ending edge to edge, as at the flush "
-                      "ends of stacked blocks) it takes their difference, "
-                      "as 'average' does. 'mass "
+                      "collinear (so contact conserves momentum). 'flatter "
+                      "body' (default) takes, for each pair of bodies, the "
+                      "normal of the one with the flatter surface at every "
+                      "node where they face each other: one surface for the "
+                      "whole interface. A box or a mesh body is flatter than "
+                      "a disk (sphere), a larger disk than a smaller one; of "
+                      "two equally flat bodies the larger by volume, then "
+                      "the one listed first (a plane body under a block). "
+                      "'largest mass' "
+                      "takes the normal of the body with the larger mass at "
+                      "each node, which may jump between the two surfaces "
+                      "across an interface and take a block's corner or a "
+                      "lattice disk's staircase edge (a block sliding on a "
+                      "plane body up to 1.1% slow, a disk 4.6%; see "
+                      "doc/validation.md). With both, where the two bodies' "
+                      "directions are less than 120 degrees apart (faces "
+                      "ending edge to edge, as at the flush ends of stacked "
+                      "blocks) the normal is their difference, as 'average' "
+                      "takes it. 'mass "
                       "weighted' weights each body's unit mass-gradient "
                       "direction by its nodal mass; 'average' is the papers' "
                       "n = (n1 - n2)/|n1 - n2| of the unit directions. "

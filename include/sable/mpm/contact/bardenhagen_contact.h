@@ -19,8 +19,11 @@ namespace sable::mpm
    * velocities at contact nodes (BodyFields::Record::new_velocity):
    *
    * - normals from the mass gradients; at a two-body node one common normal
-   *   n = (w1 n1 - w2 n2)/|w1 n1 - w2 n2| so that contact conserves
-   *   momentum exactly, with w the nodal masses (default) or 1 (papers);
+   *   so that contact conserves momentum exactly: the flatter body's
+   *   (default), the heavier one's at the node, or
+   *   n = (w1 n1 - w2 n2)/|w1 n1 - w2 n2| with w the nodal masses or 1
+   *   (papers), or the plane fitted between the bodies' points
+   *   ('Contact/Normals');
    *   at nodes with three or more bodies each pair of bodies in turn as at
    *   a two-body node, with equal and opposite impulses (momentum kept to
    *   round-off), or ('centre of mass') each body with its own normal, made
@@ -104,6 +107,16 @@ namespace sable::mpm
     meet_at_edge(const Tensor<1, dim> &normal_a, const Tensor<1, dim> &normal_b)
     {
       return normal_a * normal_b > -0.9;
+    }
+
+    /// Per body, the radius of curvature of its surface (infinite for a
+    /// box or a mesh body) and its volume, for 'Normals = flatter body';
+    /// without them the normal is the larger mass's at each node.
+    void
+    set_body_shapes(const std::vector<double> &surface_radii, const std::vector<double> &volumes)
+    {
+      body_surface_radii = surface_radii;
+      body_volumes       = volumes;
     }
 
     /// Frictional work converted to heat so far (this rank's nodes;
@@ -348,6 +361,7 @@ namespace sable::mpm
 
     const ContactParameters   parameters;
     std::vector<unsigned int> body_groups;
+    std::vector<double>       body_surface_radii, body_volumes;
     /// index into pair_forces of the pair (a, b), a < b; or invalid
     std::vector<unsigned int> reported_pair_index;
     const bool                use_traction;
@@ -360,7 +374,7 @@ namespace sable::mpm
     /// sideways offset of the centroids, in cells, that surfaces_meet()
     /// does not count
     static constexpr double sideways_tolerance = 0.25;
-    /// with 'largest mass' normals: two bodies whose unit outward
+    /// with 'flatter body' or 'largest mass' normals: two bodies whose unit outward
     /// directions at a node have a larger dot product (less than 120
     /// degrees apart) do not face each other there (pair_normal())
     static constexpr double facing_limit = -0.5;

@@ -37,6 +37,14 @@ namespace sable::mpm
       /// less than 120 degrees apart (faces ending edge to edge, as at the
       /// flush ends of stacked blocks) the average
       largest_mass,
+      /// for each pair of bodies, the normal of the one with the flatter
+      /// surface at every node where they face each other: one surface for
+      /// the whole interface (a box's or a mesh body's before a disk's, the
+      /// larger disk's before the smaller one's; between equally flat
+      /// ones the larger body's by volume, then the one listed first);
+      /// where their directions are less than 120 degrees apart the
+      /// average, as with 'largest mass'
+      flatter_body,
       /// the normal of the plane that best separates the two bodies'
       /// points near the node (logistic regression, Nairn, Hammerquist &
       /// Smith 2020): geometry, not mass, decides
@@ -48,7 +56,7 @@ namespace sable::mpm
       /// there contact acts only while the bodies approach
       fitted_at_edges
     };
-    Normals normals = Normals::largest_mass;
+    Normals normals = Normals::flatter_body;
     /// Which two-body nodes may act: every node the bodies share (the
     /// papers), or only where the bodies' surfaces have met, judged from
     /// the distance between their mass centroids at the node along the

@@ -163,6 +163,14 @@ namespace sable::mpm
     /// records correct_velocities() sets to their velocity: the kernel
     /// sees them with their masses times driver_mass_factor, so that the
     /// other bodies take their velocity as from a rigid driver.
+    /// Per body, the radius of curvature of its surface and its volume,
+    /// for 'Normals = flatter body' (BardenhagenContact::set_body_shapes()).
+    void
+    set_body_shapes(const std::vector<double> &surface_radii, const std::vector<double> &volumes)
+    {
+      model.set_body_shapes(surface_radii, volumes);
+    }
+
     void
     set_prescribed_velocities(const PrescribedVelocities<dim> *drivers)
     {
