@@ -16,7 +16,7 @@ Each case runs with the normal choices given by --normals.
 
 Usage: contrib/validation/body_friction.py [--sable build/sable]
            [--work DIR] [--dim 2|3] [--angles 20,30,40] [--frictions 0.2,0.4,0.6]
-           [--normals "mass weighted,largest mass"] [--end-time T]
+           [--normals "flatter body,largest mass"] [--end-time T]
            [--set "Section/Entry=value" ...]
 Prints a markdown table (and writes it to DIR/body_friction_<dim>d.md)."""
 import argparse
@@ -90,7 +90,7 @@ def main():
     parser.add_argument("--dim", type=int, default=2, choices=(2, 3))
     parser.add_argument("--angles", default="20,30,40")
     parser.add_argument("--frictions", default="0.2,0.4,0.6")
-    parser.add_argument("--normals", default="mass weighted,largest mass")
+    parser.add_argument("--normals", default="flatter body,largest mass")
     parser.add_argument("--end-time", type=float, default=0.5)
     parser.add_argument("--set", action="append", default=[], metavar="ENTRY=VALUE",
                         help='an entry for every run, e.g. "Grid/Shape functions=gimp"')

@@ -15,8 +15,9 @@
 //      (touching surfaces keep about one spacing: each body's points sit
 //      half a spacing inside its surface; in this impact at twice the
 //      speed of the other collision tests, at 8 cells per diameter, the
-//      closest points come to 0.37 spacings with the default normals of the
-//      body with the larger mass, 0.55 with mass-weighted normals, and
+//      closest points come to 0.66 spacings with the default normals (one
+//      disk's for the pair), 0.37 with those of the body with the larger
+//      mass at each node, 0.55 with mass-weighted normals, and
 //      points of one disk among the other's would come to 0), and the
 //      disks separate afterwards.
 // 2. A disk bouncing off a stiff block, frictionless: with the 2001
