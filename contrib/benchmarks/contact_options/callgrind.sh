@@ -58,6 +58,7 @@ PRM
 
 variants=("defaults|"
           "Detection = shared nodes|  set Detection = shared nodes"
+          "Normals = largest mass|  set Normals = largest mass"
           "Normals = mass weighted|  set Normals = mass weighted"
           "Normals = fitted at edges|  set Normals = fitted at edges"
           "Normals = logistic regression|  set Normals = logistic regression"
