@@ -555,7 +555,8 @@ namespace sable::mpm
     // the fitted planes' normals where both bodies have one (for two
     // bodies they are opposite; at nodes of more, each body's plane
     // separates it from all the others), with 'fitted at edges' only
-    // where the bodies meet at an edge; else the largest mass's
+    // where the bodies meet at an edge; else the flatter body's or the
+    // heavier one's at the node (or a blend, as 'Contact/Normals' says)
     const bool fitted = pass_fitted != nullptr && fitted_normal(a).norm_square() > 0 &&
                         fitted_normal(b).norm_square() > 0 &&
                         (parameters.normals != ContactParameters::Normals::fitted_at_edges ||
@@ -567,8 +568,9 @@ namespace sable::mpm
              parameters.normals == ContactParameters::Normals::logistic_regression ||
              parameters.normals == ContactParameters::Normals::fitted_at_edges)
       {
-        // the normal of the body with more mass at the node, whose surface
-        // the node resolves better: a flat plane's, not a block corner's;
+        // one body's normal: the flatter body's for the whole interface
+        // or the heavier one's at the node, whose surface the node
+        // resolves better (a flat plane's, not a block corner's);
         // but bodies whose outward directions are less than 120 degrees
         // apart do not face each other there (faces in contact are 180
         // degrees apart, a corner on a face 135): their faces end at the
