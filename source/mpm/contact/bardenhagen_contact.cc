@@ -350,8 +350,7 @@ namespace sable::mpm
     const Tensor<1, dim> centre_of_mass_velocity = total_momentum / total_mass;
 
     // a two-body node's geometry from an earlier pass (Geometry::reuse)
-    const bool reuse = n == 2 && geometry != nullptr && pass_geometry == Geometry::reuse &&
-                       geometry->normal_known;
+    const bool reuse = n == 2 && geometry != nullptr && pass_geometry == Geometry::reuse;
     // outward unit normals: sum_p m_p grad N_i(x_p) points from the
     // body's particles towards the node, out of the body (it is minus
     // the gradient of the body's mass density)
@@ -365,10 +364,7 @@ namespace sable::mpm
         const Tensor<1, dim> common =
           reuse ? geometry->normal : pair_normal(begin[0], begin[1], normal[0], normal[1]);
         if (geometry != nullptr)
-          {
-            geometry->normal       = common;
-            geometry->normal_known = true;
-          }
+          geometry->normal = common;
         if (common.norm_square() == 0)
           return;
         normal[0] = common;
@@ -419,10 +415,7 @@ namespace sable::mpm
               mean_traction = (begin[0].mass * traction(0) + begin[1].mass * traction(1)) /
                               total_mass;
             if (geometry != nullptr)
-              {
-                geometry->compressed       = mean_traction < 0;
-                geometry->compressed_known = true;
-              }
+              geometry->compressed = mean_traction < 0;
             node_acts = approach > 0 || mean_traction < 0;
           }
         else
@@ -732,14 +725,10 @@ namespace sable::mpm
           const Record &      ra = begin[a], &rb = begin[b];
           if (ra.mass <= 0 || rb.mass <= 0)
             continue;
-          if (pair_geometry != nullptr && !pair_geometry->normal_known)
-            {
-              pair_geometry->normal       = pair_normal(ra, rb, direction(a), direction(b));
-              pair_geometry->normal_known = true;
-            }
-          const Tensor<1, dim> common = pair_geometry != nullptr ?
-                                          pair_geometry->normal :
-                                          pair_normal(ra, rb, normal[a], normal[b]);
+          const Tensor<1, dim> common =
+            reuse ? pair_geometry->normal : pair_normal(ra, rb, normal[a], normal[b]);
+          if (pair_geometry != nullptr)
+            pair_geometry->normal = common;
           if (common.norm_square() == 0)
             continue;
           const double         pair_mass = ra.mass + rb.mass;

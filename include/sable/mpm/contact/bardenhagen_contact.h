@@ -179,7 +179,9 @@ namespace sable::mpm
     };
 
     /// A pair's contact geometry at a node, kept between apply()s
-    /// (Geometry): what each part is for, computed as it is first needed.
+    /// (Geometry). The normal is kept for every pair whose bodies both
+    /// have mass there; the traction state (at nodes of three or more
+    /// bodies) and the gap only once a pass has needed them.
     struct PairGeometry
     {
       /// the common unit normal out of the pair's first body (zero: the
@@ -188,7 +190,6 @@ namespace sable::mpm
       SurfaceGap     gap;
       /// whether the 2001 rule's traction holds the pair together
       bool compressed       = false;
-      bool normal_known     = false;
       bool compressed_known = false;
       bool gap_known        = false;
     };

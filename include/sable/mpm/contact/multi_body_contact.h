@@ -73,10 +73,6 @@ namespace sable::mpm
       return false;
     }
 
-    /// Scatter one particle's share into its body's records at the contact
-    /// nodes of @p shape, component d of its velocity as node v sees it
-    /// being velocity_at(v, d) (ParticleToGrid). Cells of one colour may
-    /// call this concurrently.
     /// Whether nothing reads the single field at any of @p nodes: each is
     /// a contact node, where every point reads its body's record, and no
     /// wall acts there. A cell all of whose nodes are such need not
@@ -91,6 +87,10 @@ namespace sable::mpm
       return true;
     }
 
+    /// Scatter one particle's share into its body's records at the contact
+    /// nodes of @p shape, component d of its velocity as node v sees it
+    /// being velocity_at(v, d) (ParticleToGrid). Cells of one colour may
+    /// call this concurrently.
     template <GridPass pass, typename VelocityAt>
     void
     scatter(const ArrayView<const double> &   properties,
@@ -159,10 +159,6 @@ namespace sable::mpm
       return fields.is_contact_node(node) ? &fields.record(node, body) : nullptr;
     }
 
-    /// The bodies of prescribed velocity (kept by the caller), whose
-    /// records correct_velocities() sets to their velocity: the kernel
-    /// sees them with their masses times driver_mass_factor, so that the
-    /// other bodies take their velocity as from a rigid driver.
     /// Per body, the radius of curvature of its surface and its volume,
     /// for 'Normals = flatter body' (BardenhagenContact::set_body_shapes()).
     void
@@ -171,6 +167,10 @@ namespace sable::mpm
       model.set_body_shapes(surface_radii, volumes);
     }
 
+    /// The bodies of prescribed velocity (kept by the caller), whose
+    /// records correct_velocities() sets to their velocity: the kernel
+    /// sees them with their masses times driver_mass_factor, so that the
+    /// other bodies take their velocity as from a rigid driver.
     void
     set_prescribed_velocities(const PrescribedVelocities<dim> *drivers)
     {
