@@ -4,7 +4,9 @@
 #include <sable/mpm/seeding.h>
 #include <sable/mpm/simulator.h>
 
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace sable::mpm
 {
@@ -73,16 +75,22 @@ namespace sable::mpm
       }
     settling           = false;
     parameters.gravity = run_gravity;
+    // energies far below a joule must not read as zero
+    const auto significant = [](const double value) {
+      std::ostringstream text;
+      text << std::setprecision(3) << value;
+      return text.str();
+    };
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
                 parameters.settling_steps,
                 "enough steps for the bodies to settle (" +
                   (peak <= std::numeric_limits<double>::max() / 2 ?
-                     "the last peak of the kinetic energy was " + std::to_string(peak) +
+                     "the last peak of the kinetic energy was " + significant(peak) +
                        " J, above 'Solver/Settling tolerance' = " +
-                       std::to_string(parameters.settling_tolerance) + " times the strain energy " +
-                       std::to_string(strain_energy) + " J" :
-                     "the kinetic energy was still rising, " + std::to_string(kinetic) + " J") +
+                       significant(parameters.settling_tolerance) + " times the strain energy " +
+                       significant(strain_energy) + " J" :
+                     "the kinetic energy was still rising, " + significant(kinetic) + " J") +
                   "; a body free to slide or roll under the gravity, such as a disk "
                   "on a slope, never settles: settle it under the part of gravity normal "
                   "to the slope, 'Solver/Settling gravity')");

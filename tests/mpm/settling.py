@@ -30,6 +30,7 @@ the run with a message naming the entry. A run shorter than the settling
 settles all the same.
 """
 import math
+import re
 
 from scene_test import check, finish, run
 
@@ -37,11 +38,12 @@ R = 0.2
 h = 1.6 / 64
 
 
-def disk_on_floor(name, material, settling_steps, velocity="0, 0", spin=0, expect_success=True, end_time=0.2):
+def disk_on_floor(name, material, settling_steps, velocity="0, 0", spin=0, expect_success=True, end_time=0.2,
+                  tolerance=1e-8):
     return run(name, {"Dimension": 2, "Gravity": "0, -9.81", "Time/End time": end_time,
                       "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1.6, 0.8", "Grid/Subdivisions": "64, 32",
                       "Boundary conditions/Types": "2: friction", "Boundary conditions/Friction coefficients": "2: 0.5",
-                      "Solver/Settling steps": settling_steps},
+                      "Solver/Settling steps": settling_steps, "Solver/Settling tolerance": tolerance},
                [{"Shape": "disk", "Radius": R, "Center": f"0.5, {R}", "Material": material,
                  "Young's modulus": 1e6, "Poisson's ratio": 0.3, "Density": 1000,
                  "Particles per cell direction": 2, "Velocity": velocity, "Angular velocity": spin}],
@@ -76,6 +78,16 @@ check("settles when the run is shorter than the settling", code == 0 and "Settle
 
 code, output, _ = disk_on_floor("too_few", "neo-Hookean", 5, expect_success=False)
 check("too few settling steps: stops naming the entry", code != 0 and "Solver/Settling steps" in output,
+      output.strip().splitlines()[-1] if output.strip() else "no output")
+
+# nearly settled, a tolerance no run reaches: the message gives the last
+# peak of the kinetic energy (about 1e-22 J here) in digits that are not all
+# zero (it once read "0.000000 J, above ... = 0.000000 times ...")
+code, output, _ = disk_on_floor("unreachable", "neo-Hookean", 1000, expect_success=False, tolerance=1e-30)
+peak = re.search(r"the last peak of the kinetic energy was (\S+) J, above 'Solver/Settling tolerance' = (\S+) ",
+                 output)
+check("settling not reached: the message gives the last peak and the tolerance in significant digits",
+      code != 0 and peak is not None and 0 < float(peak.group(1)) < 1e-3 and float(peak.group(2)) == 1e-30,
       output.strip().splitlines()[-1] if output.strip() else "no output")
 
 
