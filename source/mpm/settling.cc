@@ -1,12 +1,11 @@
 #include <deal.II/base/mpi.h>
 
 #include <sable/base/input_error.h>
+#include <sable/base/significant_digits.h>
 #include <sable/mpm/seeding.h>
 #include <sable/mpm/simulator.h>
 
-#include <iomanip>
 #include <limits>
-#include <sstream>
 
 namespace sable::mpm
 {
@@ -75,22 +74,16 @@ namespace sable::mpm
       }
     settling           = false;
     parameters.gravity = run_gravity;
-    // energies far below a joule must not read as zero
-    const auto significant = [](const double value) {
-      std::ostringstream text;
-      text << std::setprecision(3) << value;
-      return text.str();
-    };
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
                 parameters.settling_steps,
                 "enough steps for the bodies to settle (" +
                   (peak <= std::numeric_limits<double>::max() / 2 ?
-                     "the last peak of the kinetic energy was " + significant(peak) +
+                     "the last peak of the kinetic energy was " + significant_digits(peak) +
                        " J, above 'Solver/Settling tolerance' = " +
-                       significant(parameters.settling_tolerance) + " times the strain energy " +
-                       significant(strain_energy) + " J" :
-                     "the kinetic energy was still rising, " + significant(kinetic) + " J") +
+                       significant_digits(parameters.settling_tolerance) + " times the strain energy " +
+                       significant_digits(strain_energy) + " J" :
+                     "the kinetic energy was still rising, " + significant_digits(kinetic) + " J") +
                   "; a body free to slide or roll under the gravity, such as a disk "
                   "on a slope, never settles: settle it under the part of gravity normal "
                   "to the slope, 'Solver/Settling gravity')");

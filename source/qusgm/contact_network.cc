@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <sable/base/input_error.h>
+#include <sable/base/significant_digits.h>
 #include <sable/qusgm/contact_laws.h>
 #include <sable/qusgm/contact_network.h>
 
@@ -315,7 +316,7 @@ namespace sable::qusgm
                       pack.name(load.i) + " and " +
                         (load.wall ? std::string("wall ") + Walls::name(load.other) :
                                      pack.name(load.other)) +
-                        ", overlap " + std::to_string(h) + " m",
+                        ", overlap " + significant_digits(h) + " m",
                       "contacts whose grains overlap (a closed contact of the pack)");
         std::vector<Contact> &list = load.wall ? wall_contacts : pairs;
         Contact               probe{};
