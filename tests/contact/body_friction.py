@@ -23,13 +23,15 @@
    mu = 0.2 and stuck at mu = 0.4.
 2. Elastic disks meeting head-on at 2 m/s each, 2001 rule, default
    contact: equal (R = 0.2 m) and unequal (0.2 and 0.1 m) frictionless, and
-   equal ones meeting obliquely with mu = 0.5: the first force within a
-   quarter cell of touching, the centroids' distance less the radii
-   (measured -0.01 cells head-on, +0.13 cells obliquely; 1.4 cells with
-   contact at every shared node), momentum kept to round-off, kinetic +
-   strain energy never more than 0.5% above the initial (measured +0.0%),
-   restitution (rebound over impact speed) at most 1 (measured 0.93, 0.65,
-   0.80; with the heavier body's normal at each node 0.90, 0.65, 0.79).
+   equal ones meeting obliquely with mu = 0.5; the same spheres in 3D at 8
+   cells per diameter: the first force within a quarter cell of touching,
+   the centroids' distance less the radii (measured -0.01 cells head-on,
+   +0.13 cells obliquely, 3D +0.02, +0.02, +0.04; 1.4 cells with contact at
+   every shared node), momentum kept to round-off, kinetic + strain energy
+   never more than 0.5% above the initial (measured +0.0% in all six),
+   restitution (the relative velocity along the line of centres at the
+   first contact, rebound over impact) at most 1 (measured 0.93, 0.65,
+   0.87; 3D 0.93, 0.67, 0.85).
 3. A disk (R = 0.2 m) on a plane body at 16 cells per diameter, 2x2 points
    per cell seeded conforming (rings parallel to its surface), to 0.5 s:
    the centre's travel within 3% of the rigid disk's, rolling at theta =
@@ -105,39 +107,52 @@ check("cube on a plane body (3D), theta = 30, mu = 0.6 > tan theta, settled: sti
       "(travel < 1% of a cell in 0.25 s)", abs(travel) < 0.01 * h, f"travel {travel / h:.2e} cells")
 
 disk = dict(elastic, Shape="disk", **{"Young's modulus": 1e6})
-for radius, mu in [(0.2, 0), (0.1, 0), (0.2, 0.5)]:
-    # equal and unequal disks head-on, and equal disks meeting obliquely
-    # (0.5 m/s sideways each) with friction
-    what = f"head-on, radii 0.2 and {radius} m, mu = {mu}"
+# equal and unequal disks head-on, and equal disks meeting obliquely (0.5
+# m/s sideways each) with friction: in 2D at 16 cells per diameter of the
+# larger disk, in 3D (spheres) at 8
+for dim, cells, radius, mu in [(2, 80, 0.2, 0), (2, 80, 0.1, 0), (2, 80, 0.2, 0.5),
+                               (3, 40, 0.2, 0), (3, 40, 0.1, 0), (3, 40, 0.2, 0.5)]:
+    what = f"head-on, {dim}D, radii 0.2 and {radius} m, mu = {mu}"
     side = 0.5 if mu else 0
-    _, _, rows = run(f"head_on_{radius}_{mu}", {
-        "Dimension": 2, "Time/End time": 0.15, "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1",
-        "Grid/Subdivisions": "80, 40", "Contact/Model": "bardenhagen 2001", "Output/Statistics interval": 1,
+    rest = ", 0.5" if dim == 3 else ""
+    _, _, rows = run(f"head_on_{dim}d_{radius}_{mu}", {
+        "Dimension": dim, "Time/End time": 0.15, "Grid/Lower corner": ", ".join(["0"] * dim),
+        "Grid/Upper corner": "2, 1" + (", 1" if dim == 3 else ""),
+        "Grid/Subdivisions": f"{cells}, {cells // 2}" + (f", {cells // 2}" if dim == 3 else ""),
+        "Contact/Model": "bardenhagen 2001", "Output/Statistics interval": 1,
         "Contact/Friction coefficient": mu,
-    }, [dict(disk, Radius=0.2, Center="0.7, 0.5", Velocity=f"2, {side}"),
-        dict(disk, Radius=radius, Center=f"{1.1 + radius}, 0.5", Velocity=f"-2, {-side}")])
+    }, [dict(disk, Radius=0.2, Center="0.7, 0.5" + rest, Velocity=f"2, {side}" + (", 0" if dim == 3 else "")),
+        dict(disk, Radius=radius, Center=f"{1.1 + radius}, 0.5" + rest,
+             Velocity=f"-2, {-side}" + (", 0" if dim == 3 else ""))])
+    axes = "xyz"[:dim]
     # contact only at touch: the first step that changes a disk's velocity
     # comes when their surfaces (the circles the points fill) are within a
     # quarter of a cell: the centroids' distance, along the line of centres
     # (obliquely the disks have moved sideways by then), less the radii, in
-    # cells of 2 m / 80; contact at every shared node acted 1.4 cells apart
+    # cells of 2 m / cells; contact at every shared node acted 1.4 cells
+    # apart (2D)
     first = next(r for r in rows
                  if abs(r["body0_vx"] - 2.0) > 1e-12 or abs(r["body0_vy"] - side) > 1e-12)
-    centres = math.hypot(first["body1_x"] - first["body0_x"], first["body1_y"] - first["body0_y"])
-    gap = (centres - 0.2 - radius) / (2.0 / 80)
+    centres = math.sqrt(sum((first[f"body1_{c}"] - first[f"body0_{c}"]) ** 2 for c in axes))
+    gap = (centres - 0.2 - radius) / (2.0 / cells)
     check(f"{what}: first contact force within a quarter cell of touching", abs(gap) <= 0.25,
           f"surface gap {gap:+.3f} cells at t = {first['time']:.5f} s")
-    momentum = [r[f"momentum_{c}"] - rows[0][f"momentum_{c}"] for r in rows for c in "xy"]
+    momentum = [r[f"momentum_{c}"] - rows[0][f"momentum_{c}"] for r in rows for c in axes]
     scale = 2 * rows[0]["kinetic_energy"] / 2.0  # m |v| of both disks, |v| about 2
     check(f"{what}: momentum kept to round-off", max(map(abs, momentum)) < 1e-12 * scale,
           f"max |p - p0| {max(map(abs, momentum)):.2e}")
-    # measured +0.0% in all three with contact where the surfaces meet
+    # measured +0.0% in all six with contact where the surfaces meet
     # (equal disks: +1.3% with contact at every shared node, +26% with the
     # 2000 rule there; unequal disks +49%, where the drift guard stops the run)
     energy = [r["kinetic_energy"] + r["strain_energy"] for r in rows]
     check(f"{what}: energy never above the initial by more than 0.5%",
           max(energy) <= 1.005 * energy[0], f"max {max(energy) / energy[0] - 1:+.4f}")
-    restitution = (rows[-1]["body1_vx"] - rows[-1]["body0_vx"]) / 4.0
+    # along the line of centres at the first contact (obliquely it is
+    # tilted by the sideways motion, and the x velocities carry friction)
+    normal = [(first[f"body1_{c}"] - first[f"body0_{c}"]) / centres for c in axes]
+    closing = -sum(n * (rows[0][f"body1_v{c}"] - rows[0][f"body0_v{c}"]) for n, c in zip(normal, axes))
+    parting = sum(n * (rows[-1][f"body1_v{c}"] - rows[-1][f"body0_v{c}"]) for n, c in zip(normal, axes))
+    restitution = parting / closing
     check(f"{what}: restitution at most 1 and the disks rebound", 0 < restitution <= 1,
           f"e = {restitution:.3f}")
 
