@@ -12,8 +12,9 @@ grid) must match it within 2% (measured -0.4%, -0.6% on the plane body,
 -0.1%, -0.4% on the wall; the block's elastic ringing and its start from a
 stress-free state are within this), and the balance kinetic + strain +
 gravitational energy + heat must hold within 0.5% of the energy released
-on the plane body (measured 0.12%, 0.07%) and 1% on the wall (measured
-0.03% and 0.13% for mu = 0.2 and 0.4). Without the heat in the balance the
+on the plane body (measured 0.16%, 0.21%) and |energy_drift| within 1% on
+the wall (measured 0.03% and 0.13% for mu = 0.2 and 0.4; there it is
+relative to the energy released). Without the heat in the balance the
 drift would be about 35% and 70%. The wall with mu = 0.4 failed both until
 its remap pass stopped taking the friction a second time (the block rang:
 wall_heat +10%, drift +10.7%).
@@ -22,7 +23,7 @@ A pile of 30 elastic disks (prm/gallery_pile.prm under pure FLIP, 0.6 s)
 checks that the heat is not over-counted where the nodal velocities carry
 noise: the balance never gains more than 1% (measured +0.0000; the loss,
 -26%, is the normal impacts' inelasticity, not counted), and the heat is
-more than half of what left the bodies (measured 425 J of 682 J), so that
+more than half of what left the bodies (measured 396 J of 617 J), so that
 it is not lost either. Counted from the
 nodal velocities the correction leaves, the heat of the same pile
 exceeded the gravitational energy released and the guard stopped the run
@@ -63,13 +64,25 @@ def coulomb_heat(rows, mu, body):
     return mu * block_mass * g * math.cos(theta) * (rows[-1][f"body{body}_x"] - rows[0][f"body{body}_x"])
 
 
+def balance_over_released(rows):
+    """The largest change of kinetic + strain + gravitational energy + heat +
+    plastic work - boundary work over the run, over the gravitational energy
+    released by its end (energy_drift divides by at least the energy of all
+    the mass over one cell height, here the fixed plane body's too)."""
+    def total(r):
+        return (r["kinetic_energy"] + r["strain_energy"] + r["gravity_energy"] + r["plastic_work"]
+                + r["wall_heat"] + r["contact_heat"] - r["boundary_work"])
+    released = rows[0]["gravity_energy"] - rows[-1]["gravity_energy"]
+    return max(abs(total(r) - total(rows[0])) for r in rows) / released
+
+
 for mu in (0.2, 0.4):
     _, _, rows = on_plane_body(f"plane_{mu}", mu)
     check_relative(f"block on a plane body, mu = {mu}: contact_heat = mu m g cos(theta) x slid",
                    rows[-1]["contact_heat"], coulomb_heat(rows, mu, 1), 0.02)
-    drift = max(abs(r["energy_drift"]) for r in rows)
-    check(f"block on a plane body, mu = {mu}: |energy_drift| below 0.5% throughout", drift < 0.005,
-          f"max {drift:.2e}")
+    error = balance_over_released(rows)
+    check(f"block on a plane body, mu = {mu}: the balance holds within 0.5% of the energy released",
+          error < 0.005, f"largest error {error:.2e} of it")
 
 for mu in (0.2, 0.4):
     _, _, rows = run(f"wall_{mu}", dict(tilted, **{
@@ -109,7 +122,7 @@ check("pile of 30 disks under pure FLIP: runs to 0.6 s", result.returncode == 0,
       (result.stdout + result.stderr).strip().splitlines()[-1] if result.returncode else "")
 rows = read_csv(os.path.join(pile_directory, "statistics.csv"))
 if rows:
-    released = rows[0]["gravity_energy"] - min(r["gravity_energy"] for r in rows)
+    released = rows[0]["gravity_energy"] - rows[-1]["gravity_energy"]
     left = released - rows[-1]["kinetic_energy"] - rows[-1]["strain_energy"]
     heat = rows[-1]["contact_heat"] + rows[-1]["wall_heat"]
     check("pile: energy_drift never above +1% (the heat at most what left the bodies)",
