@@ -54,6 +54,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iostream>
 #include <random>
 #include <string>
 
@@ -512,9 +513,10 @@ namespace
             n_bitwise += same;
           }
       }
-    check(name + std::to_string(n_bitwise) + " of " + std::to_string(20 * n_points) +
-            " point-steps identical to the 3D update to the last bit",
-          true);
+    // reported, not checked: the check is the tolerance below, which
+    // another compiler's contraction of a multiply-add may need
+    std::cout << "note: " << name << n_bitwise << " of " << 20 * n_points
+              << " point-steps identical to the 3D update to the last bit" << std::endl;
     check_relative(name + "max |sigma_2D - sigma_3D| (and plastic strain) / max |sigma|",
                    max_difference / largest, 0., 1e-15, 1.);
     check_relative(name + "generic plane-strain update: max |sigma - sigma_3D| / max |sigma|",

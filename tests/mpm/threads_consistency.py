@@ -20,6 +20,7 @@ gather and the stress update (each point's own data only).
 
 A bad thread count stops with a message naming the option."""
 import csv
+import math
 import io
 import os
 import shutil
@@ -86,7 +87,10 @@ rows = list(csv.DictReader(io.StringIO(one)))
 cells = {int(r["cells"]) for r in rows}
 check("pile: the grid is adapted (more than the 400 coarse cells, changing)",
       min(cells) > 400 and len(cells) > 1, f"cell counts {sorted(cells)}")
-forces = [max(abs(float(r[f"contact{a}_{b}_fy"])) for r in rows) for a, b in ((0, 1), (1, 2), (1, 3), (2, 3))]
+# the size of each pair's contact force (side by side, the normal force is
+# along x)
+forces = [max(math.hypot(float(r[f"contact{a}_{b}_fx"]), float(r[f"contact{a}_{b}_fy"])) for r in rows)
+          for a, b in ((0, 1), (1, 2), (1, 3), (2, 3))]
 check("pile: bodies 0-1, 1-2, 1-3 and 2-3 are in contact", all(f > 0 for f in forces), f"{forces}")
 for name, arguments, environment in (("pile_two", ["--threads", "2"], {}),
                                      ("pile_three", [], {"SABLE_THREADS": "3"})):
