@@ -37,6 +37,8 @@ def compare(name, entries, bodies, more_ranks=(2,)):
         if column.startswith("momentum"):
             return "momentum"
         if column.startswith("body"):
+            # spins go with the positions: in scenes without spin they are
+            # round-off, and their own largest value would be no scale
             return "velocity" if "_v" in column else "position"
         return column
     scales = {}
