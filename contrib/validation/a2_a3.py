@@ -15,8 +15,9 @@ the set). Each run compares the sphere's centre of mass (body0_x, body0_vx
 of statistics.csv, every step) with the rigid solution and writes the final
 particle state once, from which the sphere's spin omega R / v_cm is taken,
 and prints the contact moment on the sphere over the friction's moment
-(columns contact0_1_ma_z, contact0_1_fx: below 1 the normal forces resist
-the spin).
+(columns contact0_1_ma_z, contact0_1_fx: 1 where the normal forces act
+through the centre; where they resist the turning, below 1 while friction
+drives the spin, A2, and above 1 while it slows the spin, A3).
 Output: a2_a3_table.md and a2_a3.png in --output-dir (default: the work
 directory; doc/validation for the report).
 
@@ -165,8 +166,10 @@ def moment_ratio(rows, radius):
     moment with the arm from the centre to the plane's surface (the
     sphere starts on it: its centre R above), both at the centre's place
     when the step's forces acted (the row's less dt times its velocity).
-    1: the normal forces act through the centre; below 1 they resist the
-    spin (a rolling resistance). NaN without the column."""
+    1: the normal forces act through the centre; where they resist the
+    turning (a rolling resistance) the ratio is below 1 while friction
+    drives the spin (A2) and above 1 while it slows it (A3). NaN without
+    the column."""
     if "contact0_1_ma_z" not in rows[0]:
         return float("nan")
     surface = rows[0]["body0_y"] - radius

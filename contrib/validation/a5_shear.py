@@ -17,12 +17,16 @@ DIR (default a5_shear.work):
 - the shear band width at each level: the x-extent over which the profile,
   as a fraction of the wall's displacement, goes from 0.1 to 0.9 (where the
   shear is taken up; the rest of the pack moves with one wall or the
-  other), in mean grain diameters and as a fraction of the box width;
+  other), in mean grain diameters (--mean-diameter, default the paper's
+  57 um; the packs in prm/ have 55.0 um and 54.6 um) and as a fraction of
+  the box width;
 - stress_difference_<shear>.png: the principal stress difference
   sigma_1 - sigma_2 of every point (the force chains), at each level;
 - with --compare OTHER_OUTPUT (e.g. a sticking run): side_by_side.png,
   the equivalent plastic strain of both runs' points at the last level
-  (the paper's Fig. 6), and both runs' band widths and energies printed;
+  (the paper's Fig. 6), each run's plastic work in its title; the printed
+  numbers are RUN_OUTPUT's only (run the script on OTHER_OUTPUT for its
+  band widths and energies);
 - energy.png, energy.csv: plastic work and contact friction heat against
   the shear, and the moving wall's force along its motion, F = (dW/dt) / V
   from the boundary work W (the fixed wall does no work), in N per metre of
@@ -127,7 +131,8 @@ def main():
     parser.add_argument("--width", type=float, default=1.2e-3, help="box width (x), m")
     parser.add_argument("--period", type=float, default=1.2e-3, help="period along y, m (0: not periodic)")
     parser.add_argument("--wall-velocity", type=float, default=100.0, help="moving wall's speed, m/s")
-    parser.add_argument("--mean-diameter", type=float, default=57e-6, help="mean grain diameter, m")
+    parser.add_argument("--mean-diameter", type=float, default=57e-6,
+                        help="mean grain diameter, m (the paper's; the packs in prm/: 55.0e-6 and 54.6e-6)")
     parser.add_argument("--levels", type=float, nargs="+", default=[0.25, 0.5, 0.75])
     parser.add_argument("--bins", type=int, default=30, help="columns across the box")
     parser.add_argument("--compare", default=None, help="output directory of a second run (e.g. sticking)")

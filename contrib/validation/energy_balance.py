@@ -27,7 +27,9 @@ def main():
         rows = read(path)
         if not rows:
             raise SystemExit(f"{path}: no rows")
-        print(f"{path} (J; 'uncounted' = released + boundary work - the rest)")
+        print(f"{path} (time in s, energies in J, energy_drift a fraction; 'released': the gravitational "
+              "energy released plus the boundary work; 'uncounted': released less the changes of kinetic and "
+              "strain energy, the heats and the plastic work)")
         print(" ".join(f"{c:>13s}" for c in columns))
         step = max(1, (len(rows) - 1) // max(1, arguments.rows - 1))
         shown = rows[::step] if rows[::step][-1] is rows[-1] else rows[::step] + [rows[-1]]
