@@ -1,3 +1,5 @@
+#include <deal.II/base/exceptions.h>
+
 #include <sable/mpm/contact/body_fields.h>
 
 #include <algorithm>
@@ -35,7 +37,20 @@ namespace sable::mpm
     for (const auto &[node, body] : extra_bodies)
       if (n_records[node]++ == 0)
         contact_nodes.push_back(node);
-    std::sort(contact_nodes.begin(), contact_nodes.end());
+    // in node order: where contact nodes are many (a dense pack of small
+    // grains) a pass over all nodes costs less than sorting them
+    if (contact_nodes.size() * 16 > n_records.size())
+      {
+        const std::size_t n_contact_nodes = contact_nodes.size();
+        contact_nodes.clear();
+        for (unsigned int node = 0; node < n_records.size(); ++node)
+          if (n_records[node] > 0)
+            contact_nodes.push_back(node);
+        Assert(contact_nodes.size() == n_contact_nodes, ExcInternalError());
+        (void)n_contact_nodes;
+      }
+    else
+      std::sort(contact_nodes.begin(), contact_nodes.end());
     unsigned int offset = 0;
     for (const unsigned int node : contact_nodes)
       {
@@ -50,10 +65,24 @@ namespace sable::mpm
     Record zero{};
     for (const unsigned int node : contact_nodes)
       {
-        const auto begin = extra_by_node.begin() + first_record[node];
-        auto       end   = begin + n_records[node];
-        std::sort(begin, end);
-        end                = std::unique(begin, end);
+        // the node's extra bodies sorted and without repeats, in place
+        // (a handful, one per cell around the node: an insertion sort)
+        unsigned int *const begin    = extra_by_node.data() + first_record[node];
+        unsigned int        n_unique = 0;
+        for (unsigned int i = 0; i < n_records[node]; ++i)
+          {
+            const unsigned int body = begin[i];
+            unsigned int       j    = n_unique;
+            while (j > 0 && begin[j - 1] > body)
+              --j;
+            if (j > 0 && begin[j - 1] == body)
+              continue;
+            for (unsigned int k = n_unique; k > j; --k)
+              begin[k] = begin[k - 1];
+            begin[j] = body;
+            ++n_unique;
+          }
+        unsigned int *const end = begin + n_unique;
         first_record[node] = records.size();
         // the node's bodies, sorted: the first one seen (never among the
         // extra ones) merged into the extra ones
