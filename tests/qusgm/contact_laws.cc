@@ -75,6 +75,8 @@ namespace
       f1[d] = -gradient[d];
     check_relative("two spheres: force along the line of centres",
                    f1 * n, p_exact, 1e-12);
+    check_relative("two spheres: no force across the line of centres",
+                   (f1 - (f1 * n) * n).norm(), 0, 1e-12, p_exact);
     check_relative("two spheres: force balance", (f1 + Tensor<1, 3>(
                      {-gradient[3], -gradient[4], -gradient[5]})).norm(), 0, 1e-12, p_exact);
 
@@ -122,6 +124,8 @@ namespace
     check_relative("sphere on wall: Hertz force", sw.wall_force[2], p_wall, 1e-12);
     wall_functional.value_and_gradient(theta1, gradient1);
     check_relative("sphere on wall: force along +z", -gradient1[2], p_wall, 1e-12);
+    check_relative("sphere on wall: no force along the wall",
+                   std::hypot(gradient1[0], gradient1[1]), 0, 1e-12, p_wall);
     theta1[2] = -dh;
     check_relative("sphere on wall: Hertz energy", wall_functional.value(theta1),
                    8. / 15. * e_star_w * std::sqrt(r1) *
