@@ -186,7 +186,7 @@ namespace
   // Dynamic relaxation of the same increment, as a DEM code would do it:
   // explicit central differences with the same contact forces (-grad Pi),
   // translational masses m and rotational ones (2/5) m for Omega R,
-  // Cundall's local damping 0.7, time step 0.2 sqrt(m_min / k_max). The walls
+  // Cundall's local damping 0.7, time step 0.2 sqrt(m_min / (2 k_max)). The walls
   // jump to their new position with the affine guess at t = 0, as for the
   // minimisers. Returns the wall time and steps until the stress change is
   // within @p tolerance of the reference at two checks 100 steps apart.
