@@ -334,6 +334,12 @@ namespace sable::mpm
     if (parallel)
       print_balance();
     print_seeding_note();
+    if (contact && parameters.update_scheme == UpdateScheme::musl &&
+        !parameters.contact.on_strain_update)
+      pcout << "note: 'Contact/Passes' leaves out the strain update: under MUSL the friction "
+               "heat (contact_heat) is counted at the remapped velocities, which the contact "
+               "then does not correct, so it is over-counted (doc/mpm.md, \"Passes\")"
+            << std::endl;
     initialized = true;
     if (!parameters.output_directory.empty() && parameters.output_interval > 0)
       write_particles();
