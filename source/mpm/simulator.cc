@@ -977,8 +977,8 @@ namespace sable::mpm
     pcout << "note: " << n_lattice_disks << (dim == 2 ? " disk" : " sphere") << (plural ? "s" : "")
           << " seeded on the lattice (the default Seeding): "
           << (dim == 2 ? "the edge is a staircase, which rolls like a polygon (16 cells per "
-                         "diameter on a plane body: 5-13% behind a rigid disk); Seeding = "
-                         "conforming follows the circle (0.2%)" :
+                         "diameter, on a plane body or a friction wall: 4-13% behind a rigid "
+                         "disk); Seeding = conforming follows the circle (within 0.4%)" :
                          "the surface is a staircase; Seeding = conforming puts the points on "
                          "shells, which helps some rolling cases and not others")
           << " (doc/mpm.md, \"Seeding round bodies\")" << std::endl;
