@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """K and G of a QuSGM pack against the confining stress, with the effective
-medium theory (Walton/Digby) for the same grains, coordination and solid
-fraction; prints the fitted growth exponents.
+medium theory (Walton/Digby) for the same grains and the coordination and
+solid fraction at the end of the runs given, averaged over them (give one
+file for a pack's own); prints the fitted growth exponents.
 
 Usage: plot_validation.py out.png mu=0.3:file.csv [mu=0.5:file.csv ...]
 """
