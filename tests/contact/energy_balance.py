@@ -40,10 +40,9 @@ import shutil
 import subprocess
 import sys
 
-import numpy as np
-
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "mpm"))
 from scene_test import check, check_relative, finish, read_csv, run  # noqa: E402
+from particle_output import closest_other_body, particle_files  # noqa: E402
 
 g = 9.81
 theta = math.radians(30)
@@ -62,37 +61,6 @@ def on_plane_body(name, mu):
     return run(name, entries,
                [dict(elastic, Shape="box", **{"Lower corner": "0, 0", "Upper corner": "2, 0.2"}),
                 dict(elastic, Shape="box", **{"Lower corner": "0.3, 0.2", "Upper corner": "0.5, 0.4"})])
-
-
-def particle_frames(directory):
-    """(positions, bodies) of every particle output of a run."""
-    import xml.etree.ElementTree as ET
-    import meshio
-    for dataset in ET.parse(os.path.join(directory, "particles.pvd")).getroot().iter("DataSet"):
-        pvtu = os.path.join(directory, dataset.get("file"))
-        meshes = [meshio.read(os.path.join(os.path.dirname(pvtu), piece.get("Source")))
-                  for piece in ET.parse(pvtu).getroot().iter("Piece")]
-        yield (np.concatenate([m.points[:, :2] for m in meshes]),
-               np.concatenate([m.point_data["body"].ravel() for m in meshes]))
-
-
-def closest_points_of_two_bodies(points, reach=0.01):
-    """The smallest distance between points of different bodies (those
-    within `reach` of each other, found through square buckets of that
-    size)."""
-    x, body = points
-    buckets = {}
-    for i, key in enumerate(map(tuple, np.floor(x / reach).astype(int))):
-        buckets.setdefault(key, []).append(i)
-    closest = math.inf
-    for (kx, ky), members in buckets.items():
-        near = np.array([j for dx in (-1, 0, 1) for dy in (-1, 0, 1) for j in buckets.get((kx + dx, ky + dy), [])])
-        members = np.array(members)
-        distance = np.linalg.norm(x[members][:, None, :] - x[near][None, :, :], axis=2)
-        other = body[members][:, None] != body[near][None, :]
-        if other.any():
-            closest = min(closest, distance[other].min())
-    return closest
 
 
 def coulomb_heat(rows, mu, body):
@@ -174,7 +142,8 @@ if rows:
     # three quarters of a spacing (measured 0.45 spacings in these frames,
     # every 0.1 s; 0.33 with a frame every 0.05 s to 1 s)
     spacing = 0.01 / 2
-    closest = min(closest_points_of_two_bodies(points) for points in particle_frames(pile_directory))
+    closest = min(closest_other_body(fields["x"], fields["body"].ravel(), spacing)
+                  for _, fields in particle_files(pile_directory, names=("id", "body")))
     check("pile: points of two grains never closer than a quarter of their spacing",
           closest >= 0.25 * spacing, f"closest {closest / spacing:.2f} spacings")
 

@@ -67,8 +67,7 @@ from scene_test import MPIEXEC, SABLE, WORK, check, finish, read_csv  # noqa: E4
 
 try:
     import numpy as np
-    import meshio
-    from xml.etree import ElementTree
+    from particle_output import closest_other_body, particle_files
 except ImportError as error:
     sys.exit(f"granular_shear_small.py: {error.name} is missing (python3-numpy, python3-meshio)")
 
@@ -218,42 +217,7 @@ h = 8e-6
 spacing = h / 2
 
 
-def particle_files(directory):
-    root = ElementTree.parse(os.path.join(directory, "particles.pvd")).getroot()
-    for dataset in root.iter("DataSet"):
-        pvtu = os.path.join(directory, dataset.get("file"))
-        pieces = [os.path.join(os.path.dirname(pvtu), p.get("Source"))
-                  for p in ElementTree.parse(pvtu).getroot().iter("Piece")]
-        meshes = [meshio.read(p) for p in pieces]
-        meshes = [m for m in meshes if len(m.points)]
-        fields = {name: np.concatenate([m.point_data[name] for m in meshes]) for name in ("id", "body", "velocity")}
-        fields["x"] = np.concatenate([m.points[:, :2] for m in meshes]).astype(float)
-        order = np.argsort(fields["id"].ravel())
-        yield float(dataset.get("timestep")), {k: v[order] for k, v in fields.items()}
-
-
 PERIOD = 4e-4  # the grid is periodic in y
-
-
-def closest_other_body(x, body):
-    """Least distance from a point to a point of another body (cell lists
-    of width s: two points closer than s are in neighbouring cells), across
-    the periodic seam too (the points near it also at their images)."""
-    low, high = x[:, 1] < 2 * spacing, x[:, 1] > PERIOD - 2 * spacing
-    x = np.concatenate([x, x[low] + [0, PERIOD], x[high] - [0, PERIOD]])
-    body = np.concatenate([body, body[low], body[high]])
-    keys = np.floor(x / spacing).astype(int)
-    cells = {}
-    for i, key in enumerate(map(tuple, keys)):
-        cells.setdefault(key, []).append(i)
-    best = math.inf
-    for (i, j), members in cells.items():
-        near = [m for di in (-1, 0, 1) for dj in (-1, 0, 1) for m in cells.get((i + di, j + dj), [])]
-        a, b = np.array(members), np.array(near)
-        d = np.linalg.norm(x[a][:, None, :] - x[b][None, :, :], axis=2)
-        d[body[a][:, None] == body[b][None, :]] = np.inf
-        best = min(best, d.min())
-    return best
 
 
 if True:
@@ -284,7 +248,7 @@ if True:
     check("scene: the held grains move exactly with their walls",
           held_ok and worst <= 1e-10 and len(left) > 0 and len(right) > 0,
           f"{len(left)} left and {len(right)} right grains over {len(files)} outputs, position error {worst:.2e} m")
-    closest = [closest_other_body(fields["x"], fields["body"].ravel().astype(int)) / spacing
+    closest = [closest_other_body(fields["x"], fields["body"].ravel().astype(int), spacing, PERIOD) / spacing
                for t, fields in files]
     print("closest points of different grains at each output, in spacings s: " +
           ", ".join(f"{c:.3f}" for c in closest))

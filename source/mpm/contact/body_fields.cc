@@ -1,5 +1,3 @@
-#include <deal.II/base/exceptions.h>
-
 #include <sable/mpm/contact/body_fields.h>
 
 #include <algorithm>
@@ -41,13 +39,10 @@ namespace sable::mpm
     // grains) a pass over all nodes costs less than sorting them
     if (contact_nodes.size() * 16 > n_records.size())
       {
-        const std::size_t n_contact_nodes = contact_nodes.size();
         contact_nodes.clear();
         for (unsigned int node = 0; node < n_records.size(); ++node)
           if (n_records[node] > 0)
             contact_nodes.push_back(node);
-        Assert(contact_nodes.size() == n_contact_nodes, ExcInternalError());
-        (void)n_contact_nodes;
       }
     else
       std::sort(contact_nodes.begin(), contact_nodes.end());
