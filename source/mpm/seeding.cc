@@ -12,6 +12,12 @@
 
 namespace sable::mpm
 {
+  namespace
+  {
+    /// How deep, in seeding cells, points carry their surface's normal.
+    constexpr double surface_layer = 1.5;
+  } // namespace
+
   template <int dim>
   void
   seed_bodies(const parallel::distributed::Triangulation<dim> &triangulation,
@@ -102,6 +108,15 @@ namespace sable::mpm
           if (layout.initial_position_stored)
             for (unsigned int d = 0; d < dim; ++d)
               properties[layout.initial_position() + d] = x[d];
+          // the surface's normal for the points within about a cell and a
+          // half of it (three layers at two points per cell direction)
+          if (layout.surface_normal_stored)
+            {
+              const Tensor<1, dim> normal = body.surface_normal(
+                x_body, surface_layer * k * ParticleLayout<dim>::spacing_of_volume(volume));
+              for (unsigned int d = 0; d < dim; ++d)
+                properties[layout.surface_normal() + d] = normal[d];
+            }
           particle_handler.insert_particle(x, reference, next_id++, cell,
                                             make_array_view(properties));
         };

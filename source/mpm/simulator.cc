@@ -123,6 +123,11 @@ namespace sable::mpm
       }
     layout.initial_position_stored = parameters.displacement_output;
     layout.affine_stored           = parameters.affine_transfers;
+    // the flatter body's normal comes from its surface, not from the
+    // staircase of its points' mass gradient
+    layout.surface_normal_stored =
+      parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 &&
+      parameters.contact.normals == ContactParameters::Normals::flatter_body;
     particle_to_grid.set_layout(layout);
     grid_to_particle.set_layout(layout);
     if (parameters.contact.model != ContactParameters::Model::none &&
@@ -132,6 +137,7 @@ namespace sable::mpm
         for (const auto &body : parameters.bodies)
           groups.push_back(body.group);
         contact = std::make_unique<MultiBodyContact<dim>>(parameters.contact, groups);
+        contact->set_layout(layout);
         // contact reads the other ranks' points near it as ghost particles,
         // which deal.II 9.4 does not send across periodic faces
         check_input(!parallel || !periodicity.any(),

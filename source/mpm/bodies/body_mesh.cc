@@ -241,6 +241,7 @@ namespace sable::mpm
         moment += first;
       }
     region_centroid = Point<dim>(total_measure > 0 ? moment / total_measure : moment);
+    facets.set_from_cells(vertices, cell_start);
 
     // about one cell per bin
     const unsigned int per_direction =
@@ -305,6 +306,7 @@ namespace sable::mpm
         box             = surface->bounding_box();
         total_measure   = surface->volume();
         region_centroid = surface->centroid();
+        facets.set_from_triangles(surface->get_triangles());
       }
     else
       throw InputError("a 2D volume mesh; an STL file is a 3D surface");

@@ -131,6 +131,35 @@ namespace sable::mpm
   }
 
   template <int dim>
+  Tensor<1, dim>
+  BodyParameters<dim>::surface_normal(const Point<dim> &x, const double depth_limit) const
+  {
+    Tensor<1, dim> normal;
+    // a disk's or sphere's points keep their mass gradient, the normal
+    // that the measurements of round bodies were made with
+    if (shape == Shape::box)
+      {
+        // the nearest face (the first of equally near ones)
+        double depth = depth_limit;
+        for (unsigned int d = 0; d < dim; ++d)
+          for (const double sign : {-1., 1.})
+            {
+              const double face_depth =
+                sign < 0 ? x[d] - lower_corner[d] : upper_corner[d] - x[d];
+              if (face_depth <= depth && (normal.norm_square() == 0 || face_depth < depth))
+                {
+                  depth     = face_depth;
+                  normal    = Tensor<1, dim>();
+                  normal[d] = sign;
+                }
+            }
+      }
+    else if (shape == Shape::mesh)
+      normal = mesh.surface_normal(x, depth_limit);
+    return normal;
+  }
+
+  template <int dim>
   Point<dim>
   BodyParameters<dim>::top_point(const Tensor<1, dim> &gravity) const
   {

@@ -1,3 +1,4 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parallel.h>
 
 #include <sable/mpm/contact/multi_body_contact.h>
@@ -17,7 +18,40 @@ namespace sable::mpm
     , with_regression(parameters.normals == ContactParameters::Normals::logistic_regression ||
                       parameters.normals == ContactParameters::Normals::fitted_at_edges)
     , model(parameters, body_groups)
+    , n_bodies(body_groups.size())
   {}
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::update_body_rotations(const ParticleCells<dim> &cells,
+                                               const MPI_Comm            communicator)
+  {
+    // per body: sum V0 F and sum V0 over its points on all ranks
+    const unsigned int  n_entries = dim * dim + 1;
+    std::vector<double> sums(n_bodies * n_entries, 0.);
+    for (unsigned int c = 0; c < cells.n_owned(); ++c)
+      for (const auto &particle : cells[c].particles)
+        {
+          const auto         props  = particle.get_properties();
+          const unsigned int body   = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
+          const double       volume = props[ParticleLayout<dim>::initial_volume];
+          double *const      sum    = &sums[body * n_entries];
+          for (unsigned int k = 0; k < dim * dim; ++k)
+            sum[k] += volume * props[ParticleLayout<dim>::deformation + k];
+          sum[dim * dim] += volume;
+        }
+    Utilities::MPI::sum(sums, communicator, sums);
+    body_rotations.resize(n_bodies);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const double *const sum = &sums[b * n_entries];
+        Tensor<2, dim>      mean;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            mean[i][j] = sum[dim * dim] > 0 ? sum[i * dim + j] / sum[dim * dim] : double(i == j);
+        body_rotations[b] = ParticleLayout<dim>::rotation_of(mean);
+      }
+  }
 
   template <int dim>
   void
@@ -27,6 +61,8 @@ namespace sable::mpm
                                             const BoundaryConditions<dim> & boundary_conditions)
   {
     wall_nodes = &boundary_conditions.constrained_nodes();
+    if (layout.surface_normal_stored)
+      update_body_rotations(cells, grid.triangulation.get_communicator());
     fields.clear(grid.n_relevant_nodes());
     const bool gimp = grid.get_shape_functions() == ShapeFunctions::gimp;
     // with linear shape functions, the bodies of each cell's points, kept

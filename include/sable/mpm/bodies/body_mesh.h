@@ -4,6 +4,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <sable/mpm/bodies/surface_facets.h>
+
 #include <array>
 #include <memory>
 #include <string>
@@ -75,6 +77,15 @@ namespace sable::mpm
     void
     set_surface(const ClosedSurface &surface);
 
+    /// The outward normal of the boundary facet nearest @p x (the cells'
+    /// faces no other cell shares, or the closed surface's triangles), zero
+    /// if it is farther than @p depth_limit.
+    Tensor<1, dim>
+    surface_normal(const Point<dim> &x, const double depth_limit) const
+    {
+      return facets.nearest_normal(x, depth_limit);
+    }
+
   private:
     /// cell c's vertices are vertices[cell_start[c] .. cell_start[c + 1])
     std::vector<Point<dim>>   vertices;
@@ -91,6 +102,7 @@ namespace sable::mpm
 
     /// the closed surface, if the region is given by one
     std::shared_ptr<const ClosedSurface> surface;
+    SurfaceFacets<dim>                   facets;
 
     bool
     cell_contains(const unsigned int c, const Point<dim> &x) const;

@@ -119,6 +119,12 @@ namespace sable::mpm
     /// Whether @p x is inside a disk, box or mesh (never for points).
     bool
     contains(const Point<dim> &x) const;
+    /// The outward unit normal of the flat face nearest @p x (a box's, or
+    /// a mesh's boundary facet), zero if @p x lies deeper than
+    /// @p depth_limit or the shape has no flat faces (disk, sphere, points).
+    Tensor<1, dim>
+    surface_normal(const Point<dim> &x, const double depth_limit) const;
+
     /// The point of the shape lowest in the potential −g·x (where p = 0).
     Point<dim>
     top_point(const Tensor<1, dim> &gravity) const;

@@ -54,6 +54,12 @@ namespace sable::mpm
     Point<3>
     top_point(const Tensor<1, 3> &gravity) const;
 
+    const std::vector<std::array<Point<3>, 3>> &
+    get_triangles() const
+    {
+      return triangles;
+    }
+
     /**
      * Set the triangles, compute volume, centroid and bins. Throws an
      * InputError (its message what is allowed instead) unless every edge

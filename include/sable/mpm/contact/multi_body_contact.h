@@ -105,6 +105,13 @@ namespace sable::mpm
       const double spacing = pass == GridPass::momentum_update && with_position ?
                                ParticleLayout<dim>::seeding_spacing(properties) :
                                0.;
+      const bool carries_normals =
+        pass == GridPass::momentum_update && layout.surface_normal_stored;
+      const Tensor<1, dim> surface_normal =
+        carries_normals ? Tensor<1, dim>(body_rotations[body] *
+                                         ParticleLayout<dim>::reference_surface_normal(layout, properties)) :
+                          Tensor<1, dim>();
+      const double surface_normal_length = surface_normal.norm();
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {
           if (!fields.is_contact_node(shape.nodes[v]))
@@ -122,6 +129,11 @@ namespace sable::mpm
                 {
                   record.mass_position += weight * shape.image_for_node(location, v);
                   record.mass_spacing += weight * spacing;
+                }
+              if (carries_normals)
+                {
+                  record.mass_surface_normal += weight * surface_normal;
+                  record.mass_surface += weight * surface_normal_length;
                 }
               if (with_regression)
                 samples[fields.index_of(record)].push_back(
@@ -157,6 +169,14 @@ namespace sable::mpm
     velocities(const unsigned int node, const unsigned int body) const
     {
       return fields.is_contact_node(node) ? &fields.record(node, body) : nullptr;
+    }
+
+    /// Where the points keep their properties; with surface normals stored
+    /// (ParticleLayout::surface_normal_stored) the records sum them.
+    void
+    set_layout(const ParticleLayout<dim> &particle_layout)
+    {
+      layout = particle_layout;
     }
 
     /// Per body, the radius of curvature of its surface and its volume,
@@ -269,6 +289,15 @@ namespace sable::mpm
     void
     gather_cell_bodies(const ParticleCells<dim> &cells, const ParticleLayout<dim> &layout);
 
+    /// Each body's rotation, that of the polar decomposition of its points'
+    /// mean deformation gradient (weighted by their initial volumes): the
+    /// rotation its points' surface normals are turned by. The points' own
+    /// F would tilt them by the strain near a contact (a slipping sphere's
+    /// spin lost 7% of the friction's moment to a plane body's normals
+    /// turned so).
+    void
+    update_body_rotations(const ParticleCells<dim> &cells, const MPI_Comm communicator);
+
     bool heat_at_remap = false;
 
     const PrescribedVelocities<dim> *prescribed  = nullptr;
@@ -276,6 +305,7 @@ namespace sable::mpm
     Tensor<1, dim>                   driver_impulse;
 
     const ContactParameters parameters;
+    ParticleLayout<dim>     layout;
     const bool              with_traction;
     const bool              with_position;
     const bool              with_regression;
@@ -295,6 +325,9 @@ namespace sable::mpm
     /// [cell_bodies_start[i], cell_bodies_start[i + 1]); valid while the
     /// list's version is cell_bodies_version (points do not change body,
     /// and only a rebuilt list has points change cells).
+    const unsigned int          n_bodies;
+    std::vector<Tensor<2, dim>> body_rotations;
+
     std::vector<unsigned int> cell_bodies;
     std::vector<unsigned int> cell_bodies_start;
     unsigned long long        cell_bodies_version = std::numeric_limits<unsigned long long>::max();
