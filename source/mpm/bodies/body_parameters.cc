@@ -3,6 +3,8 @@
 #include <sable/base/input_error.h>
 #include <sable/base/named_choice.h>
 #include <sable/mpm/bodies/body_parameters.h>
+
+#include <array>
 #include <sable/mpm/parameter_tools.h>
 
 #include <filesystem>
@@ -135,24 +137,26 @@ namespace sable::mpm
   BodyParameters<dim>::surface_normal(const Point<dim> &x, const double depth_limit) const
   {
     Tensor<1, dim> normal;
-    // a disk's or sphere's points keep their mass gradient, the normal
-    // that the measurements of round bodies were made with
+    // a disk's or sphere's points carry none: their mass gradient is
+    // already the radial direction up to the lattice's staircase (carried
+    // radial normals let unequal disks gain 1.7% energy head-on)
     if (shape == Shape::box)
       {
-        // the nearest face (the first of equally near ones)
-        double depth = depth_limit;
+        // the nearest face, unless a face of another axis is within the
+        // limit too: near an edge or a corner the face is ambiguous
+        std::array<double, dim> depth;
+        unsigned int            axis = 0;
         for (unsigned int d = 0; d < dim; ++d)
-          for (const double sign : {-1., 1.})
-            {
-              const double face_depth =
-                sign < 0 ? x[d] - lower_corner[d] : upper_corner[d] - x[d];
-              if (face_depth <= depth && (normal.norm_square() == 0 || face_depth < depth))
-                {
-                  depth     = face_depth;
-                  normal    = Tensor<1, dim>();
-                  normal[d] = sign;
-                }
-            }
+          {
+            depth[d] = std::min(x[d] - lower_corner[d], upper_corner[d] - x[d]);
+            if (depth[d] < depth[axis])
+              axis = d;
+          }
+        bool corner = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          corner = corner || (d != axis && depth[d] <= depth_limit);
+        if (depth[axis] <= depth_limit && !corner)
+          normal[axis] = x[axis] - lower_corner[axis] <= upper_corner[axis] - x[axis] ? -1. : 1.;
       }
     else if (shape == Shape::mesh)
       normal = mesh.surface_normal(x, depth_limit);

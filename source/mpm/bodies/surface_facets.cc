@@ -9,6 +9,10 @@ namespace sable::mpm
 {
   namespace
   {
+    /// Facets whose normals differ by more than about 2.6 degrees meet at
+    /// an edge (coplanar facets of one face agree to round-off).
+    constexpr double corner_cosine = 0.999;
+
     double
     distance_to_segment(const Point<3> &x, const Point<3> &a, const Point<3> &b)
     {
@@ -215,7 +219,15 @@ namespace sable::mpm
             best    = &facet;
           }
       }
-    return best != nullptr && nearest <= depth_limit ? best->normal : Tensor<1, dim>();
+    if (best == nullptr || nearest > depth_limit)
+      return Tensor<1, dim>();
+    // near an edge or a corner, where a facet of another direction is
+    // within the limit too, the face is ambiguous
+    for (const Facet &facet : facets)
+      if (facet.normal * best->normal < corner_cosine &&
+          distance_to_facet<dim>(x, facet.vertices) <= depth_limit)
+        return Tensor<1, dim>();
+    return best->normal;
   }
 
   template class SurfaceFacets<2>;

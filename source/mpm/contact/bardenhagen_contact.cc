@@ -581,8 +581,11 @@ namespace sable::mpm
         const Tensor<1, dim> direction_b = surfaces ? surface_direction(b, normal_b) : normal_b;
         const bool ends_meet = direction_a.norm_square() > 0 && direction_b.norm_square() > 0 &&
                                direction_a * direction_b > facing_limit;
-        if (ends_meet && surfaces && on_one_face(a) != on_one_face(b))
-          // a corner on a face: the face's normal
+        if (surfaces && on_one_face(a) != on_one_face(b))
+          // one body's face, the other's corner (or a body without faces):
+          // the face's normal, whichever body is flatter (a block's face
+          // passing the rear corner of the block under it was held there
+          // by that corner's leaning mass gradient)
           common = on_one_face(a) ? direction_a : Tensor<1, dim>(-direction_b);
         else if (ends_meet)
           common = direction_a - direction_b;

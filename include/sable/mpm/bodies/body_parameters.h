@@ -120,8 +120,9 @@ namespace sable::mpm
     bool
     contains(const Point<dim> &x) const;
     /// The outward unit normal of the flat face nearest @p x (a box's, or
-    /// a mesh's boundary facet), zero if @p x lies deeper than
-    /// @p depth_limit or the shape has no flat faces (disk, sphere, points).
+    /// a mesh's boundary facet); zero if @p x lies deeper than
+    /// @p depth_limit, if another face is within it too (near an edge or a
+    /// corner), or if the shape has no flat faces (disk, sphere, points).
     Tensor<1, dim>
     surface_normal(const Point<dim> &x, const double depth_limit) const;
 

@@ -44,8 +44,10 @@ namespace sable::mpm
     void
     set_from_triangles(const std::vector<std::array<Point<dim>, dim>> &triangles);
 
-    /// The outward normal of the facet nearest @p x, zero if that facet is
-    /// farther than @p depth_limit (or there are none). O(facets).
+    /// The outward normal of the facet nearest @p x; zero if that facet is
+    /// farther than @p depth_limit (or there are none), or if a facet of
+    /// another direction is within it too (@p x near an edge or a corner,
+    /// where the face is ambiguous). O(facets).
     Tensor<1, dim>
     nearest_normal(const Point<dim> &x, const double depth_limit) const;
 
