@@ -14,8 +14,9 @@ namespace sable::mpm
 {
   namespace
   {
-    /// How deep, in seeding cells, points carry their surface's normal.
-    constexpr double surface_layer = 1.5;
+    /// How deep, in seeding cells, points carry their surface's normal:
+    /// every point in the reach of a node up to a cell inside the surface.
+    constexpr double surface_layer = 2.;
   } // namespace
 
   template <int dim>
@@ -108,8 +109,8 @@ namespace sable::mpm
           if (layout.initial_position_stored)
             for (unsigned int d = 0; d < dim; ++d)
               properties[layout.initial_position() + d] = x[d];
-          // the surface's normal for the points within about a cell and a
-          // half of it (three layers at two points per cell direction)
+          // the surface's normal for the points within two cells of it
+          // (four layers at two points per cell direction)
           if (layout.surface_normal_stored)
             {
               const Tensor<1, dim> normal = body.surface_normal(
