@@ -631,7 +631,7 @@ namespace sable::mpm
     // next to its corner took the front face's normal against a wedge's
     // face, and the block hopped), and the normals agree within about a
     // degree (a record of points of two faces)
-    return r.mass_surface >= 0.9 * r.mass &&
+    return r.mass_surface > 0 && r.mass_surface >= 0.9 * r.mass &&
            r.mass_surface_normal.norm() >= (1 - 1e-4) * r.mass_surface;
   }
 

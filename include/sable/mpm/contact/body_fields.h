@@ -41,13 +41,13 @@ namespace sable::mpm
       double mass_spacing;
       /// sum_p m_p sigma_p N (in-plane part), for the traction criterion
       SymmetricTensor<2, dim> mass_stress;
-      /// sum_p m_p N cof(F_p) N_p over the points that carry their body's
-      /// surface normal N_p: the body's surface normal at the node, where
-      /// the surface is inclined to the grid too
+      /// sum_p m_p N n_p over the points that carry the unit normal n_p of
+      /// the face they lie under (box and mesh bodies; turned with the
+      /// body's rotation): the body's surface normal at the node, also
+      /// where the face is inclined to the grid
       Tensor<1, dim> mass_surface_normal;
-      /// sum_p m_p N |cof(F_p) N_p| over the same points: near 1 times the
-      /// normal's length where they all lie under one face, less at a
-      /// corner
+      /// sum_p m_p N over the same points: at most mass; as large as the
+      /// length of mass_surface_normal where they all lie under one face
       double mass_surface;
       Tensor<1, dim>          old_velocity;
       Tensor<1, dim>          new_velocity;

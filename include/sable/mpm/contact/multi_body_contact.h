@@ -105,13 +105,14 @@ namespace sable::mpm
       const double spacing = pass == GridPass::momentum_update && with_position ?
                                ParticleLayout<dim>::seeding_spacing(properties) :
                                0.;
-      const bool carries_normals =
-        pass == GridPass::momentum_update && layout.surface_normal_stored;
-      const Tensor<1, dim> surface_normal =
-        carries_normals ? Tensor<1, dim>(body_rotations[body] *
-                                         ParticleLayout<dim>::reference_surface_normal(layout, properties)) :
-                          Tensor<1, dim>();
-      const double surface_normal_length = surface_normal.norm();
+      // the normal of the face the point lies under (unit length, turned
+      // with its body), if it carries one
+      Tensor<1, dim> surface_normal;
+      if (pass == GridPass::momentum_update && layout.surface_normal_stored)
+        surface_normal = ParticleLayout<dim>::reference_surface_normal(layout, properties);
+      const bool carries_normal = surface_normal.norm_square() > 0;
+      if (carries_normal)
+        surface_normal = body_rotations[body] * surface_normal;
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {
           if (!fields.is_contact_node(shape.nodes[v]))
@@ -130,10 +131,10 @@ namespace sable::mpm
                   record.mass_position += weight * shape.image_for_node(location, v);
                   record.mass_spacing += weight * spacing;
                 }
-              if (carries_normals)
+              if (carries_normal)
                 {
                   record.mass_surface_normal += weight * surface_normal;
-                  record.mass_surface += weight * surface_normal_length;
+                  record.mass_surface += weight;
                 }
               if (with_regression)
                 samples[fields.index_of(record)].push_back(
