@@ -15,8 +15,13 @@ namespace sable::mpm
   namespace
   {
     /// How deep, in seeding cells, points carry their surface's normal:
-    /// every point in the reach of a node up to a cell inside the surface.
+    /// every point in the reach of a node up to a cell inside the surface;
+    /// and within what distance of a face of another direction they carry
+    /// none (near an edge or a corner the face is ambiguous; a block's
+    /// edge zones two cells wide left the sides of a cube six cells wide
+    /// on a wedge to the staircase's mass gradient).
     constexpr double surface_layer = 2.;
+    constexpr double edge_margin   = 1.;
   } // namespace
 
   template <int dim>
@@ -113,8 +118,9 @@ namespace sable::mpm
           // (four layers at two points per cell direction)
           if (layout.surface_normal_stored)
             {
-              const Tensor<1, dim> normal = body.surface_normal(
-                x_body, surface_layer * k * ParticleLayout<dim>::spacing_of_volume(volume));
+              const double         cell = k * ParticleLayout<dim>::spacing_of_volume(volume);
+              const Tensor<1, dim> normal =
+                body.surface_normal(x_body, surface_layer * cell, edge_margin * cell);
               for (unsigned int d = 0; d < dim; ++d)
                 properties[layout.surface_normal() + d] = normal[d];
             }

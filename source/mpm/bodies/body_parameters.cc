@@ -134,7 +134,9 @@ namespace sable::mpm
 
   template <int dim>
   Tensor<1, dim>
-  BodyParameters<dim>::surface_normal(const Point<dim> &x, const double depth_limit) const
+  BodyParameters<dim>::surface_normal(const Point<dim> &x,
+                                      const double      depth_limit,
+                                      const double      edge_margin) const
   {
     Tensor<1, dim> normal;
     // a disk's or sphere's points carry none: their mass gradient is
@@ -142,8 +144,8 @@ namespace sable::mpm
     // radial normals let unequal disks gain 1.7% energy head-on)
     if (shape == Shape::box)
       {
-        // the nearest face, unless a face of another axis is within the
-        // limit too: near an edge or a corner the face is ambiguous
+        // the nearest face, unless a face of another axis is within
+        // edge_margin: near an edge or a corner the face is ambiguous
         std::array<double, dim> depth;
         unsigned int            axis = 0;
         for (unsigned int d = 0; d < dim; ++d)
@@ -154,12 +156,12 @@ namespace sable::mpm
           }
         bool corner = false;
         for (unsigned int d = 0; d < dim; ++d)
-          corner = corner || (d != axis && depth[d] <= depth_limit);
+          corner = corner || (d != axis && depth[d] <= edge_margin);
         if (depth[axis] <= depth_limit && !corner)
           normal[axis] = x[axis] - lower_corner[axis] <= upper_corner[axis] - x[axis] ? -1. : 1.;
       }
     else if (shape == Shape::mesh)
-      normal = mesh.surface_normal(x, depth_limit);
+      normal = mesh.surface_normal(x, depth_limit, edge_margin);
     return normal;
   }
 

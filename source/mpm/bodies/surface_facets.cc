@@ -192,7 +192,9 @@ namespace sable::mpm
 
   template <int dim>
   Tensor<1, dim>
-  SurfaceFacets<dim>::nearest_normal(const Point<dim> &x, const double depth_limit) const
+  SurfaceFacets<dim>::nearest_normal(const Point<dim> &x,
+                                     const double      depth_limit,
+                                     const double      edge_margin) const
   {
     double       nearest = std::numeric_limits<double>::max();
     const Facet *best    = nullptr;
@@ -222,10 +224,10 @@ namespace sable::mpm
     if (best == nullptr || nearest > depth_limit)
       return Tensor<1, dim>();
     // near an edge or a corner, where a facet of another direction is
-    // within the limit too, the face is ambiguous
+    // within the margin, the face is ambiguous
     for (const Facet &facet : facets)
       if (facet.normal * best->normal < corner_cosine &&
-          distance_to_facet<dim>(x, facet.vertices) <= depth_limit)
+          distance_to_facet<dim>(x, facet.vertices) <= edge_margin)
         return Tensor<1, dim>();
     return best->normal;
   }

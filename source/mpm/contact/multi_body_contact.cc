@@ -26,6 +26,27 @@ namespace sable::mpm
   MultiBodyContact<dim>::update_body_rotations(const ParticleCells<dim> &cells,
                                                const MPI_Comm            communicator)
   {
+    // once: the bodies some of whose points carry a normal (a point keeps
+    // the one it was seeded with); a scene of disks, or of grains so small
+    // that every point lies near an edge, has none and skips the rest
+    if (bodies_with_normals.empty())
+      {
+        std::vector<unsigned int> flags(n_bodies, 0);
+        for (unsigned int c = 0; c < cells.n_owned(); ++c)
+          for (const auto &particle : cells[c].particles)
+            {
+              const auto props = particle.get_properties();
+              if (ParticleLayout<dim>::reference_surface_normal(layout, props).norm_square() > 0)
+                flags[static_cast<unsigned int>(props[ParticleLayout<dim>::body])] = 1;
+            }
+        Utilities::MPI::max(flags, communicator, flags);
+        bodies_with_normals.assign(flags.begin(), flags.end());
+        any_body_with_normals =
+          std::find(flags.begin(), flags.end(), 1u) != flags.end();
+        body_rotations.assign(n_bodies, unit_symmetric_tensor<dim>());
+      }
+    if (!any_body_with_normals)
+      return;
     // per body: sum V0 F and sum V0 over its points on all ranks
     const unsigned int  n_entries = dim * dim + 1;
     std::vector<double> sums(n_bodies * n_entries, 0.);
@@ -34,6 +55,8 @@ namespace sable::mpm
         {
           const auto         props  = particle.get_properties();
           const unsigned int body   = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
+          if (!bodies_with_normals[body])
+            continue;
           const double       volume = props[ParticleLayout<dim>::initial_volume];
           double *const      sum    = &sums[body * n_entries];
           for (unsigned int k = 0; k < dim * dim; ++k)
@@ -41,8 +64,8 @@ namespace sable::mpm
           sum[dim * dim] += volume;
         }
     Utilities::MPI::sum(sums, communicator, sums);
-    body_rotations.resize(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
+      if (bodies_with_normals[b])
       {
         const double *const sum = &sums[b * n_entries];
         Tensor<2, dim>      mean;

@@ -78,12 +78,12 @@ namespace sable::mpm
     set_surface(const ClosedSurface &surface);
 
     /// The outward normal of the boundary facet nearest @p x (the cells'
-    /// faces no other cell shares, or the closed surface's triangles), zero
-    /// if it is farther than @p depth_limit.
+    /// faces no other cell shares, or the closed surface's triangles), as
+    /// SurfaceFacets::nearest_normal() gives it.
     Tensor<1, dim>
-    surface_normal(const Point<dim> &x, const double depth_limit) const
+    surface_normal(const Point<dim> &x, const double depth_limit, const double edge_margin) const
     {
-      return facets.nearest_normal(x, depth_limit);
+      return facets.nearest_normal(x, depth_limit, edge_margin);
     }
 
   private:

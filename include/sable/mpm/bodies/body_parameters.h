@@ -121,10 +121,11 @@ namespace sable::mpm
     contains(const Point<dim> &x) const;
     /// The outward unit normal of the flat face nearest @p x (a box's, or
     /// a mesh's boundary facet); zero if @p x lies deeper than
-    /// @p depth_limit, if another face is within it too (near an edge or a
-    /// corner), or if the shape has no flat faces (disk, sphere, points).
+    /// @p depth_limit, if a face of another direction is within
+    /// @p edge_margin (near an edge or a corner), or if the shape has no
+    /// flat faces (disk, sphere, points).
     Tensor<1, dim>
-    surface_normal(const Point<dim> &x, const double depth_limit) const;
+    surface_normal(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
 
     /// The point of the shape lowest in the potential −g·x (where p = 0).
     Point<dim>

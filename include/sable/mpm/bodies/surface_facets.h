@@ -46,10 +46,10 @@ namespace sable::mpm
 
     /// The outward normal of the facet nearest @p x; zero if that facet is
     /// farther than @p depth_limit (or there are none), or if a facet of
-    /// another direction is within it too (@p x near an edge or a corner,
-    /// where the face is ambiguous). O(facets).
+    /// another direction is within @p edge_margin (@p x near an edge or a
+    /// corner, where the face is ambiguous). O(facets).
     Tensor<1, dim>
-    nearest_normal(const Point<dim> &x, const double depth_limit) const;
+    nearest_normal(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
 
     unsigned int
     n_facets() const

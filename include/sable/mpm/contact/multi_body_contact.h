@@ -108,7 +108,7 @@ namespace sable::mpm
       // the normal of the face the point lies under (unit length, turned
       // with its body), if it carries one
       Tensor<1, dim> surface_normal;
-      if (pass == GridPass::momentum_update && layout.surface_normal_stored)
+      if (pass == GridPass::momentum_update && any_body_with_normals && bodies_with_normals[body])
         surface_normal = ParticleLayout<dim>::reference_surface_normal(layout, properties);
       const bool carries_normal = surface_normal.norm_square() > 0;
       if (carries_normal)
@@ -327,6 +327,8 @@ namespace sable::mpm
     /// list's version is cell_bodies_version (points do not change body,
     /// and only a rebuilt list has points change cells).
     const unsigned int          n_bodies;
+    std::vector<bool>           bodies_with_normals;
+    bool                        any_body_with_normals = false;
     std::vector<Tensor<2, dim>> body_rotations;
 
     std::vector<unsigned int> cell_bodies;
