@@ -9,15 +9,16 @@ default normals ('flatter body'). Both faces are staircases of points; the
 rigid block slides down the slope with a = g (sin theta - mu cos theta).
 The acceleration along the slope is fitted to the travel over 0.05..0.5 s:
 within 2% of the rigid value at theta = 30 deg with mu = 0 and 0.2, and at
-20 deg with mu = 0.2 (measured -0.04%, -0.10%, -0.46%). The block stays on
+20 deg with mu = 0.2 (measured -0.01%, -0.43%, -0.10%). The block stays on
 the slope: its centre moves less than a quarter cell across it.
 
 Taken from the mass gradients of the staircase points, the normal tilts
 from node to node: the same block then stuck at mu = 0.2 (a = -0.16 m/s^2
-at 30 deg) and slid at 0.47 of the rigid value without friction. Points
-within two cells of a face carry its normal (turned with their body's
-rotation) and the contact takes it where a node's points lie under one
-face (doc/mpm.md, "Contact between bodies").
+at 30 deg) and slid at 0.47 of the rigid value without friction.
+Points within two cells of a face carry its normal (none within a cell
+of another face); their records take it where nine tenths of their mass
+carries one normal. The normals
+turn with their body's rotation (doc/mpm.md, "Contact between bodies").
 """
 import math
 import os
