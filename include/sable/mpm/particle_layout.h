@@ -73,48 +73,16 @@ namespace sable::mpm
       return surface_normal() + (surface_normal_stored ? dim : 0);
     }
 
-    /// The point's reference surface normal N (zero where it carries none)
-    /// in a layout that stores it.
+    /// The point's reference surface normal N (zero where it carries none),
+    /// if the layout stores it.
     template <typename Properties>
-    static dealii::Tensor<1, dim>
-    reference_surface_normal(const ParticleLayout &layout, const Properties &props)
+    dealii::Tensor<1, dim>
+    reference_surface_normal(const Properties &props) const
     {
       dealii::Tensor<1, dim> N;
       for (unsigned int d = 0; d < dim; ++d)
-        N[d] = props[layout.surface_normal() + d];
+        N[d] = props[surface_normal() + d];
       return N;
-    }
-
-    /// The rotation R of the polar decomposition F = R U (det F > 0): in 2D
-    /// in closed form, in 3D by Higham's iteration X <- (X + X^-T) / 2.
-    static dealii::Tensor<2, dim>
-    rotation_of(const dealii::Tensor<2, dim> &F)
-    {
-      dealii::Tensor<2, dim> R;
-      if constexpr (dim == 2)
-        {
-          const double c = F[0][0] + F[1][1], s = F[1][0] - F[0][1];
-          const double norm = std::hypot(c, s);
-          if (norm == 0)
-            return dealii::unit_symmetric_tensor<dim>();
-          R[0][0] = R[1][1] = c / norm;
-          R[1][0]           = s / norm;
-          R[0][1]           = -s / norm;
-        }
-      else
-        {
-          R = F;
-          for (unsigned int iteration = 0; iteration < 20; ++iteration)
-            {
-              const dealii::Tensor<2, dim> next =
-                0.5 * (R + dealii::transpose(dealii::invert(R)));
-              const double change = (next - R).norm();
-              R                   = next;
-              if (change < 1e-12)
-                break;
-            }
-        }
-      return R;
     }
 
     /// Index among the stress components (xx yy zz xy xz yz) of (i, j).

@@ -4,10 +4,46 @@
 #include <sable/mpm/contact/multi_body_contact.h>
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 
 namespace sable::mpm
 {
+  namespace
+  {
+    /// The rotation R of the polar decomposition F = R U (det F > 0): in 2D
+    /// in closed form, in 3D by Higham's iteration X <- (X + X^-T) / 2.
+    template <int dim>
+    Tensor<2, dim>
+    rotation_of(const Tensor<2, dim> &F)
+    {
+      Tensor<2, dim> R;
+      if constexpr (dim == 2)
+        {
+          const double c = F[0][0] + F[1][1], s = F[1][0] - F[0][1];
+          const double norm = std::hypot(c, s);
+          if (norm == 0)
+            return unit_symmetric_tensor<dim>();
+          R[0][0] = R[1][1] = c / norm;
+          R[1][0]           = s / norm;
+          R[0][1]           = -s / norm;
+        }
+      else
+        {
+          R = F;
+          for (unsigned int iteration = 0; iteration < 20; ++iteration)
+            {
+              const Tensor<2, dim> next   = 0.5 * (R + transpose(invert(R)));
+              const double         change = (next - R).norm();
+              R                           = next;
+              if (change < 1e-12)
+                break;
+            }
+        }
+      return R;
+    }
+  } // namespace
+
   template <int dim>
   MultiBodyContact<dim>::MultiBodyContact(
     const ContactParameters &        parameters,
@@ -36,7 +72,7 @@ namespace sable::mpm
           for (const auto &particle : cells[c].particles)
             {
               const auto props = particle.get_properties();
-              if (ParticleLayout<dim>::reference_surface_normal(layout, props).norm_square() > 0)
+              if (layout.reference_surface_normal(props).norm_square() > 0)
                 flags[static_cast<unsigned int>(props[ParticleLayout<dim>::body])] = 1;
             }
         Utilities::MPI::max(flags, communicator, flags);
@@ -72,7 +108,7 @@ namespace sable::mpm
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = 0; j < dim; ++j)
             mean[i][j] = sum[dim * dim] > 0 ? sum[i * dim + j] / sum[dim * dim] : double(i == j);
-        body_rotations[b] = ParticleLayout<dim>::rotation_of(mean);
+        body_rotations[b] = rotation_of(mean);
       }
   }
 

@@ -109,7 +109,7 @@ namespace sable::mpm
       // with its body), if it carries one
       Tensor<1, dim> surface_normal;
       if (pass == GridPass::momentum_update && any_body_with_normals && bodies_with_normals[body])
-        surface_normal = ParticleLayout<dim>::reference_surface_normal(layout, properties);
+        surface_normal = layout.reference_surface_normal(properties);
       const bool carries_normal = surface_normal.norm_square() > 0;
       if (carries_normal)
         surface_normal = body_rotations[body] * surface_normal;
