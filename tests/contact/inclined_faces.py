@@ -10,7 +10,9 @@ rigid block slides down the slope with a = g (sin theta - mu cos theta).
 The acceleration along the slope is fitted to the travel over 0.05..0.5 s:
 within 2% of the rigid value at theta = 30 deg with mu = 0 and 0.2, and at
 20 deg with mu = 0.2 (measured -0.01%, -0.43%, -0.10%). The block stays on
-the slope: its centre moves less than a quarter cell across it.
+the slope: its centre moves less than a quarter cell across it. With
+mu = 0.7 at 30 deg, started settled ('Solver/Settling steps'), it sticks:
+it moves less than 1% of a cell in 0.5 s (measured 2e-6 cells).
 
 Taken from the mass gradients of the staircase points, the normal tilts
 from node to node: the same block then stuck at mu = 0.2 (a = -0.16 m/s^2
@@ -49,9 +51,9 @@ def write_quad(path, corners):
         f.write("1 0 quad 1 2 3 4\n")
 
 
-def slide(theta_degrees, mu):
-    """Return the fitted and rigid accelerations along the slope and the
-    largest move across it."""
+def slide(theta_degrees, mu, settling_steps=0):
+    """Return the fitted and rigid accelerations along the slope, the
+    largest move across it and the largest travel along it."""
     theta = math.radians(theta_degrees)
     top = base + length * math.tan(theta)
     down = np.array([math.cos(theta), -math.sin(theta)])   # along the slope
@@ -72,6 +74,7 @@ def slide(theta_degrees, mu):
         "Grid/Subdivisions": f"{round(length / h)}, {rows_y}",
         "Boundary conditions/Types": "0: slip, 2: fixed", "Contact/Model": "bardenhagen 2001",
         "Contact/Friction coefficient": mu, "Output/Statistics interval": 10,
+        "Solver/Settling steps": settling_steps,
     }, [dict(elastic, **{"Mesh file": wedge}), dict(elastic, **{"Mesh file": block})])
     t = np.array([r["time"] for r in rows])
     moved = np.array([[r["body1_x"] - rows[0]["body1_x"], r["body1_y"] - rows[0]["body1_y"]]
@@ -80,14 +83,20 @@ def slide(theta_degrees, mu):
     late = t >= 0.05
     matrix = np.vstack([np.ones(late.sum()), t[late], t[late] ** 2 / 2]).T
     fitted = np.linalg.lstsq(matrix, along[late], rcond=None)[0][2]
-    return fitted, g * (math.sin(theta) - mu * math.cos(theta)), np.abs(across).max()
+    return (fitted, g * (math.sin(theta) - mu * math.cos(theta)), np.abs(across).max(),
+            np.abs(along).max())
 
 
 for theta, mu in ((30, 0.0), (30, 0.2), (20, 0.2)):
-    fitted, rigid, across = slide(theta, mu)
+    fitted, rigid, across, _ = slide(theta, mu)
     check(f"block on a {theta} deg wedge, mu = {mu}: the acceleration along the slope within 2% "
           "of the rigid one", abs(fitted - rigid) <= 0.02 * rigid,
           f"a = {fitted:.4f}, rigid {rigid:.4f} m/s^2 ({(fitted - rigid) / rigid:+.2%})")
     check(f"block on a {theta} deg wedge, mu = {mu}: it stays on the slope (moves less than "
           "h/4 across it)", across < h / 4, f"{across * 1000:.2f} mm")
+
+# mu above tan theta: started settled, the block stays where it is
+_, _, _, travel = slide(30, 0.7, settling_steps=20000)
+check("block on a 30 deg wedge, mu = 0.7 (sticks): it moves less than 1% of a cell in 0.5 s",
+      travel < 0.01 * h, f"{travel / h:.2e} cells")
 finish()
