@@ -14,6 +14,7 @@
 #include <sable/mpm/simulator.h>
 #include <sable/mpm/stress_update.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -123,11 +124,17 @@ namespace sable::mpm
       }
     layout.initial_position_stored = parameters.displacement_output;
     layout.affine_stored           = parameters.affine_transfers;
-    // the flatter body's normal comes from its surface, not from the
-    // staircase of its points' mass gradient
+    // the flatter body's normal comes from its faces, not from the
+    // staircase of its points' mass gradient: only boxes and meshes have
+    // faces (a scene of disks stores nothing)
+    const bool any_faces =
+      std::any_of(parameters.bodies.begin(), parameters.bodies.end(), [](const auto &body) {
+        return body.shape == BodyParameters<dim>::Shape::box ||
+               body.shape == BodyParameters<dim>::Shape::mesh;
+      });
     layout.surface_normal_stored =
       parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 &&
-      parameters.contact.normals == ContactParameters::Normals::flatter_body;
+      parameters.contact.normals == ContactParameters::Normals::flatter_body && any_faces;
     particle_to_grid.set_layout(layout);
     grid_to_particle.set_layout(layout);
     if (parameters.contact.model != ContactParameters::Model::none &&

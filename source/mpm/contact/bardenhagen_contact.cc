@@ -577,16 +577,20 @@ namespace sable::mpm
         // degree wedge barely slid)
         const bool surfaces = parameters.normals == ContactParameters::Normals::flatter_body &&
                               !body_volumes.empty();
-        const Tensor<1, dim> direction_a = surfaces ? surface_direction(a, normal_a) : normal_a;
-        const Tensor<1, dim> direction_b = surfaces ? surface_direction(b, normal_b) : normal_b;
+        const bool           face_a      = surfaces && on_one_face(a);
+        const bool           face_b      = surfaces && on_one_face(b);
+        const Tensor<1, dim> direction_a =
+          face_a ? Tensor<1, dim>(a.mass_surface_normal / a.mass_surface_normal.norm()) : normal_a;
+        const Tensor<1, dim> direction_b =
+          face_b ? Tensor<1, dim>(b.mass_surface_normal / b.mass_surface_normal.norm()) : normal_b;
         const bool ends_meet = direction_a.norm_square() > 0 && direction_b.norm_square() > 0 &&
                                direction_a * direction_b > facing_limit;
-        if (surfaces && on_one_face(a) != on_one_face(b))
+        if (face_a != face_b)
           // one body's face, the other's corner (or a body without faces):
           // the face's normal, whichever body is flatter (a block's face
           // passing the rear corner of the block under it was held there
           // by that corner's leaning mass gradient)
-          common = on_one_face(a) ? direction_a : Tensor<1, dim>(-direction_b);
+          common = face_a ? direction_a : Tensor<1, dim>(-direction_b);
         else if (ends_meet)
           common = direction_a - direction_b;
         else if (surfaces)
@@ -611,15 +615,6 @@ namespace sable::mpm
       common = a.mass * normal_a - b.mass * normal_b;
     const double norm = common.norm();
     return norm > 0 ? Tensor<1, dim>(common / norm) : Tensor<1, dim>();
-  }
-
-  template <int dim>
-  Tensor<1, dim>
-  BardenhagenContact<dim>::surface_direction(const typename BodyFields<dim>::Record &r,
-                                             const Tensor<1, dim> &                  fallback)
-  {
-    return on_one_face(r) ? Tensor<1, dim>(r.mass_surface_normal / r.mass_surface_normal.norm()) :
-                            fallback;
   }
 
   template <int dim>

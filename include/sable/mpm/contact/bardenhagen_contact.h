@@ -297,14 +297,9 @@ namespace sable::mpm
     bool
     approach_only_at_edge(const Tensor<1, dim> &normal_a, const Tensor<1, dim> &normal_b) const;
 
-    /// The unit normal of the surface that @p r's points carry
-    /// (BodyFields::Record::mass_surface_normal) where they lie under one
-    /// face (on_one_face()), else @p fallback.
-    static Tensor<1, dim>
-    surface_direction(const typename BodyFields<dim>::Record &r, const Tensor<1, dim> &fallback);
-
-    /// Whether @p r's points carry surface normals that agree within about
-    /// a degree: the body's surface at the node is one face, not a corner.
+    /// Whether nine tenths of @p r's mass carries a surface normal and the
+    /// normals agree within about a degree: the body's surface at the node
+    /// is one face, not a corner (BodyFields::Record::mass_surface_normal).
     static bool
     on_one_face(const typename BodyFields<dim>::Record &r);
 

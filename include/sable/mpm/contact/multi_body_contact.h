@@ -321,16 +321,18 @@ namespace sable::mpm
     std::vector<Tensor<1, dim>>               fitted_normals;
     BardenhagenContact<dim> model;
 
-    /// The bodies of each cell's points (linear shape functions), in the
-    /// order of the ParticleCells list: cell i's are
-    /// [cell_bodies_start[i], cell_bodies_start[i + 1]); valid while the
-    /// list's version is cell_bodies_version (points do not change body,
-    /// and only a rebuilt list has points change cells).
+    /// the bodies some of whose points carry a face normal (found at the
+    /// first step), and each body's rotation (update_body_rotations())
     const unsigned int          n_bodies;
     std::vector<bool>           bodies_with_normals;
     bool                        any_body_with_normals = false;
     std::vector<Tensor<2, dim>> body_rotations;
 
+    /// The bodies of each cell's points (linear shape functions), in the
+    /// order of the ParticleCells list: cell i's are
+    /// [cell_bodies_start[i], cell_bodies_start[i + 1]); valid while the
+    /// list's version is cell_bodies_version (points do not change body,
+    /// and only a rebuilt list has points change cells).
     std::vector<unsigned int> cell_bodies;
     std::vector<unsigned int> cell_bodies_start;
     unsigned long long        cell_bodies_version = std::numeric_limits<unsigned long long>::max();
