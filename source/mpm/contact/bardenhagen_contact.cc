@@ -577,12 +577,12 @@ namespace sable::mpm
         // degree wedge barely slid)
         const bool surfaces = parameters.normals == ContactParameters::Normals::flatter_body &&
                               !body_volumes.empty();
-        const bool           face_a      = surfaces && on_one_face(a);
-        const bool           face_b      = surfaces && on_one_face(b);
-        const Tensor<1, dim> direction_a =
-          face_a ? Tensor<1, dim>(a.mass_surface_normal / a.mass_surface_normal.norm()) : normal_a;
-        const Tensor<1, dim> direction_b =
-          face_b ? Tensor<1, dim>(b.mass_surface_normal / b.mass_surface_normal.norm()) : normal_b;
+        const Tensor<1, dim> face_normal_a = surfaces ? face_normal(a) : Tensor<1, dim>();
+        const Tensor<1, dim> face_normal_b = surfaces ? face_normal(b) : Tensor<1, dim>();
+        const bool           face_a        = face_normal_a.norm_square() > 0;
+        const bool           face_b        = face_normal_b.norm_square() > 0;
+        const Tensor<1, dim> direction_a   = face_a ? face_normal_a : normal_a;
+        const Tensor<1, dim> direction_b   = face_b ? face_normal_b : normal_b;
         const bool ends_meet = direction_a.norm_square() > 0 && direction_b.norm_square() > 0 &&
                                direction_a * direction_b > facing_limit;
         if (face_a != face_b)
@@ -618,16 +618,38 @@ namespace sable::mpm
   }
 
   template <int dim>
-  bool
-  BardenhagenContact<dim>::on_one_face(const typename BodyFields<dim>::Record &r)
+  Tensor<1, dim>
+  BardenhagenContact<dim>::face_normal(const typename BodyFields<dim>::Record &r) const
   {
     // nine tenths of the mass at the node carries a normal (points near an
     // edge or a corner carry none: there a record of a block's front face
     // next to its corner took the front face's normal against a wedge's
-    // face, and the block hopped), and the normals agree within about a
-    // degree (a record of points of two faces)
-    return r.mass_surface > 0 && r.mass_surface >= 0.9 * r.mass &&
-           r.mass_surface_normal.norm() >= (1 - 1e-4) * r.mass_surface;
+    // face, and the block hopped)
+    if (!(r.mass_surface > 0) || r.mass_surface < 0.9 * r.mass)
+      return Tensor<1, dim>();
+    // the normals agree within about a degree: one face
+    const double length = r.mass_surface_normal.norm();
+    if (length >= (1 - 1e-4) * r.mass_surface)
+      return r.mass_surface_normal / length;
+    // points of two faces: those a cell or two deep near an edge reach the
+    // nodes of both faces (a wedge's points near its side tilted the
+    // slope's records under a cube's side planes by a few degrees); the
+    // face whose direction nine tenths of the mass projects onto (for
+    // faces at right angles, the mass under it)
+    if (r.body + 1 >= face_direction_start.size())
+      return Tensor<1, dim>();
+    double         largest = 0;
+    Tensor<1, dim> direction;
+    for (unsigned int k = face_direction_start[r.body]; k < face_direction_start[r.body + 1]; ++k)
+      {
+        const double along = r.mass_surface_normal * face_directions[k];
+        if (along > largest)
+          {
+            largest   = along;
+            direction = face_directions[k];
+          }
+      }
+    return largest >= 0.9 * r.mass ? direction : Tensor<1, dim>();
   }
 
   template <int dim>

@@ -80,6 +80,8 @@ namespace sable::mpm
         any_body_with_normals =
           std::find(flags.begin(), flags.end(), 1u) != flags.end();
         body_rotations.assign(n_bodies, unit_symmetric_tensor<dim>());
+        if (any_body_with_normals)
+          find_face_directions(cells, communicator);
       }
     if (!any_body_with_normals)
       return;
@@ -110,6 +112,74 @@ namespace sable::mpm
             mean[i][j] = sum[dim * dim] > 0 ? sum[i * dim + j] / sum[dim * dim] : double(i == j);
         body_rotations[b] = rotation_of(mean);
       }
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      for (unsigned int k = face_direction_start[b]; k < face_direction_start[b + 1]; ++k)
+        face_directions[k] = body_rotations[b] * reference_face_directions[k];
+    model.set_face_directions(face_directions, face_direction_start);
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::find_face_directions(const ParticleCells<dim> &cells,
+                                              const MPI_Comm            communicator)
+  {
+    // directions within about 2.5 degrees are one face's (as the facets'
+    // corner test at seeding)
+    const auto add_distinct = [](std::vector<Tensor<1, dim>> &list, const Tensor<1, dim> &n) {
+      for (const auto &known : list)
+        if (known * n > 0.999)
+          return;
+      list.push_back(n);
+    };
+    std::vector<std::vector<Tensor<1, dim>>> per_body(n_bodies);
+    for (unsigned int c = 0; c < cells.n_owned(); ++c)
+      for (const auto &particle : cells[c].particles)
+        {
+          const auto           props = particle.get_properties();
+          const Tensor<1, dim> n     = layout.reference_surface_normal(props);
+          const unsigned int   body  = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
+          if (n.norm_square() > 0 && per_body[body].size() <= max_face_directions)
+            add_distinct(per_body[body], n);
+        }
+    // every rank's lists, as (body, direction) rows
+    std::vector<double> rows;
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      for (const auto &n : per_body[b])
+        {
+          rows.push_back(b);
+          for (unsigned int d = 0; d < dim; ++d)
+            rows.push_back(n[d]);
+        }
+    // (raw MPI: deal.II's all_gather serialises the numbers as text)
+    const int        n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    std::vector<int> counts(n_ranks), offsets(n_ranks + 1, 0);
+    const int        count = rows.size();
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, communicator);
+    for (int r = 0; r < n_ranks; ++r)
+      offsets[r + 1] = offsets[r] + counts[r];
+    std::vector<double> all_rows(offsets[n_ranks]);
+    MPI_Allgatherv(rows.data(), count, MPI_DOUBLE, all_rows.data(), counts.data(), offsets.data(),
+                   MPI_DOUBLE, communicator);
+    for (auto &list : per_body)
+      list.clear();
+    for (std::size_t i = 0; i + dim < all_rows.size(); i += dim + 1)
+      {
+        Tensor<1, dim> n;
+        for (unsigned int d = 0; d < dim; ++d)
+          n[d] = all_rows[i + 1 + d];
+        auto &list = per_body[static_cast<unsigned int>(all_rows[i])];
+        if (list.size() <= max_face_directions)
+          add_distinct(list, n);
+      }
+    reference_face_directions.clear();
+    face_direction_start.assign(1, 0);
+    for (const auto &list : per_body)
+      {
+        if (list.size() <= max_face_directions)
+          reference_face_directions.insert(reference_face_directions.end(), list.begin(), list.end());
+        face_direction_start.push_back(reference_face_directions.size());
+      }
+    face_directions = reference_face_directions;
   }
 
   template <int dim>

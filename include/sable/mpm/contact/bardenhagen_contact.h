@@ -119,6 +119,18 @@ namespace sable::mpm
       body_volumes       = volumes;
     }
 
+    /// Per body, the directions of its faces, turned with the body: the
+    /// distinct normals its points carry (MultiBodyContact), body b's
+    /// from @p start[b] to @p start[b + 1]; none for a body of too many
+    /// (a curved mesh), whose mixed records are corners.
+    void
+    set_face_directions(const std::vector<Tensor<1, dim>> &directions,
+                        const std::vector<unsigned int> &  start)
+    {
+      face_directions      = directions;
+      face_direction_start = start;
+    }
+
     /// Frictional work converted to heat so far (this rank's nodes;
     /// Statistics::contact_heat): the friction impulses times the slip the
     /// bodies show afterwards, which MultiBodyContact counts at the
@@ -297,11 +309,15 @@ namespace sable::mpm
     bool
     approach_only_at_edge(const Tensor<1, dim> &normal_a, const Tensor<1, dim> &normal_b) const;
 
-    /// Whether nine tenths of @p r's mass carries a surface normal and the
-    /// normals agree within about a degree: the body's surface at the node
-    /// is one face, not a corner (BodyFields::Record::mass_surface_normal).
-    static bool
-    on_one_face(const typename BodyFields<dim>::Record &r);
+    /// The unit normal of the face that @p r's body's surface is at the
+    /// node (BodyFields::Record::mass_surface_normal), or zero at a corner
+    /// or where its points carry none: nine tenths of the record's mass
+    /// carries a normal and the normals agree within about a degree, or,
+    /// where the points of two faces meet in the record (a cell or two
+    /// from an edge), nine tenths of the mass lies under one of the body's
+    /// face directions (set_face_directions()).
+    Tensor<1, dim>
+    face_normal(const typename BodyFields<dim>::Record &r) const;
 
     /// With 'Detection = surface position': the gap between the surfaces
     /// of the bodies of @p a and @p b along @p normal (out of a).
@@ -369,6 +385,9 @@ namespace sable::mpm
     const ContactParameters   parameters;
     std::vector<unsigned int> body_groups;
     std::vector<double>       body_surface_radii, body_volumes;
+    /// set_face_directions()
+    std::vector<Tensor<1, dim>> face_directions;
+    std::vector<unsigned int>   face_direction_start;
     /// index into pair_forces of the pair (a, b), a < b; or invalid
     std::vector<unsigned int> reported_pair_index;
     const bool                use_traction;
