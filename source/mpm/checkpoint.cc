@@ -48,13 +48,14 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 8: the reported pairs' moments; 7: whether the last step's
+      /// 9: the contact pairs' pulling impulses; 8: the reported pairs'
+      /// moments; 7: whether the last step's
       /// statistics row is due; 6: the scene's
       /// entries, compared on resume (5: the friction heat of the walls; 4: the run
       /// state as one RunState, the contact nodes as an output series;
       /// 3: the grid's base level and the grid output series; 1 and 2 have
       /// a coarse mesh of every subdivision cell)
-      static constexpr unsigned int current_format = 8;
+      static constexpr unsigned int current_format = 9;
       unsigned int          format         = current_format;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
@@ -72,6 +73,7 @@ namespace sable::mpm
       double                momentum_correction     = 0;
       std::vector<Tensor<1, dim>>                 pair_forces;
       std::vector<Tensor<1, 3>>                   pair_moments;
+      std::vector<double>                         pulling_impulses;
       std::vector<std::pair<double, std::string>> particle_files;
       std::vector<std::pair<double, std::string>> contact_node_files;
       std::vector<XDMFEntry>                      contact_node_xdmf_entries;
@@ -91,7 +93,7 @@ namespace sable::mpm
         ar &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
         ar &n_particles &run &wall_heat;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction;
-        ar &pair_forces &pair_moments;
+        ar &pair_forces &pair_moments &pulling_impulses;
         ar &particle_files &contact_node_files &contact_node_xdmf_entries &xdmf_entries;
         ar &grid_files &grid_xdmf_entries;
         ar &scene_entries;
@@ -213,6 +215,8 @@ namespace sable::mpm
           state.pair_forces.push_back(Utilities::MPI::sum(force, communicator));
         for (const auto &moment : contact->get_model().pair_moments)
           state.pair_moments.push_back(Utilities::MPI::sum(moment, communicator));
+        // the same on every rank
+        state.pulling_impulses = contact->get_model().get_pulling_impulses();
       }
 
     // all ranks are done with the mesh files before rank 0 seals the set
@@ -363,6 +367,7 @@ namespace sable::mpm
         if (state.pair_moments.size() == contact->get_model().pair_moments.size())
           for (unsigned int i = 0; i < state.pair_moments.size(); ++i)
             contact->get_model().pair_moments[i] = root ? state.pair_moments[i] : Tensor<1, 3>();
+        contact->get_model().set_pulling_impulses(state.pulling_impulses);
       }
 
     // statistics.csv: the rows up to the checkpoint, then this run's

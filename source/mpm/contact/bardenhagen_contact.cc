@@ -91,7 +91,7 @@ namespace sable::mpm
     });
     if (cap_friction)
       {
-        compute_friction_scales(communicator);
+        compute_friction_scales(communicator, record_forces);
         if (!friction_scale.empty())
           for_each_chunk([&](const unsigned int chunk, Scratch &scratch) {
             redo_capped_nodes(pass, chunk, scratch);
@@ -251,7 +251,27 @@ namespace sable::mpm
 
   template <int dim>
   void
-  BardenhagenContact<dim>::compute_friction_scales(const MPI_Comm communicator)
+  BardenhagenContact<dim>::keep_pulling_impulse(const unsigned int body_a,
+                                                const unsigned int body_b,
+                                                const bool         momentum_measure,
+                                                const bool         owned,
+                                                NodeSums &         sums) const
+  {
+    // a pair that shares a node without acting there is still in contact:
+    // an empty impulse keeps its entry (read only where it has one)
+    if (momentum_measure && !pulling_impulse.empty())
+      {
+        const std::pair<unsigned int, unsigned int> pair(std::min(body_a, body_b),
+                                                         std::max(body_a, body_b));
+        if (pulling_impulse.find(pair) != nullptr)
+          sums.pair_impulses.push_back({pair, 0., 0., owned});
+      }
+  }
+
+  template <int dim>
+  void
+  BardenhagenContact<dim>::compute_friction_scales(const MPI_Comm communicator,
+                                                   const bool     momentum_update)
   {
     // per pair: net normal impulse, friction impulse (chunk by chunk, so
     // the sums do not depend on the threads; each pair's sum is formed in
@@ -283,13 +303,30 @@ namespace sable::mpm
               total.second += part[i + 3];
             }
       }
+    // the momentum update offsets a pair's pulling impulse of earlier
+    // steps first: over time its friction stays within mu times its net
+    // normal impulse (a block sliding on a staircase face was pulled back
+    // in a quarter of the steps, and its friction, mu times the
+    // compressive steps' impulse, was 4% above mu times its weight)
+    if (momentum_update)
+      next_pulling_impulse.clear();
     totals.for_each([&](const auto &pair, const auto &total) {
       const double mu =
         parameters.friction_between(body_groups[pair.first], body_groups[pair.second]);
-      const double allowed = mu * std::max(total.first, 0.);
+      double pulled = 0;
+      if (momentum_update)
+        {
+          const double *const earlier = pulling_impulse.find(pair);
+          pulled                      = earlier != nullptr ? *earlier : 0.;
+          if (pulled - total.first > 0)
+            next_pulling_impulse[pair] = pulled - total.first;
+        }
+      const double allowed = mu * std::max(total.first - pulled, 0.);
       if (total.second > allowed)
         friction_scale[pair] = allowed / total.second;
     });
+    if (momentum_update)
+      std::swap(pulling_impulse, next_pulling_impulse);
   }
 
   template <int dim>
@@ -438,6 +475,8 @@ namespace sable::mpm
         const double         dv_n = dv * normal[a];
         const bool acts = n == 2 ? node_acts :
                                    (dv_n > 0 || (use_traction && traction(a) < 0));
+        if (n == 2 && a == 0 && !acts)
+          keep_pulling_impulse(begin[0].body, begin[1].body, measure && record_forces, owned, sums);
         if (!acts || r.mass <= 0)
           continue;
         // friction with the heaviest other body at the node
@@ -814,7 +853,10 @@ namespace sable::mpm
                                  (velocity[a] - velocity[b]) * common,
                                  dt);
           if (!acts)
-            continue;
+            {
+              keep_pulling_impulse(ra.body, rb.body, measure && record_forces, owned, sums);
+              continue;
+            }
           const double mu =
             parameters.friction_between(body_groups[ra.body], body_groups[rb.body]);
           const CoulombCorrection<dim> correction = coulomb_correction(dv, common, mu);

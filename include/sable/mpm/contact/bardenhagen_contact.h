@@ -146,6 +146,29 @@ namespace sable::mpm
     {
       heat_at_nodes = at_nodes;
     }
+    /// The pulling impulses carried to the next step (the same on every
+    /// rank), as (first body, second body, impulse) triples, for
+    /// checkpoints.
+    std::vector<double>
+    get_pulling_impulses() const
+    {
+      std::vector<double> triples;
+      pulling_impulse.for_each([&](const auto &pair, const double impulse) {
+        triples.insert(triples.end(), {double(pair.first), double(pair.second), impulse});
+      });
+      return triples;
+    }
+
+    /// Restore what get_pulling_impulses() gave.
+    void
+    set_pulling_impulses(const std::vector<double> &triples)
+    {
+      pulling_impulse.clear();
+      for (std::size_t i = 0; i + 2 < triples.size(); i += 3)
+        pulling_impulse[{static_cast<unsigned int>(triples[i]),
+                         static_cast<unsigned int>(triples[i + 1])}] = triples[i + 2];
+    }
+
     /// Momentum the corrections did not conserve, sum over nodes of
     /// |sum_a m_a dv_a| (non-zero only at nodes with three or more bodies),
     /// and the size of the corrections, sum over nodes and bodies of
@@ -380,7 +403,18 @@ namespace sable::mpm
     /// The friction cap per pair from the measured impulses, summed over
     /// all ranks: mu N_net / F_t where the friction exceeds mu N_net.
     void
-    compute_friction_scales(const MPI_Comm communicator);
+    compute_friction_scales(const MPI_Comm communicator, const bool momentum_update);
+
+    /// With @p momentum_measure (the momentum update's measuring pass):
+    /// an empty impulse of the pair of @p body_a and @p body_b, which share
+    /// a node where contact does not act, if the pair has a pulling
+    /// impulse to keep.
+    void
+    keep_pulling_impulse(const unsigned int body_a,
+                         const unsigned int body_b,
+                         const bool         momentum_measure,
+                         const bool         owned,
+                         NodeSums &         sums) const;
 
     const ContactParameters   parameters;
     std::vector<unsigned int> body_groups;
@@ -427,6 +461,12 @@ namespace sable::mpm
     PairTable<std::pair<double, double>> pair_totals;
     /// this pass's friction scale of the pairs whose friction is capped
     PairTable<double> friction_scale;
+    /// per pair in contact, the net pulling normal impulse of earlier
+    /// momentum updates that no compressive one has offset yet (the 2001
+    /// rule holds separating nodes with pulling impulses; friction is
+    /// bounded by the net normal impulse over time, not only per step),
+    /// and the table being built for the next step
+    PairTable<double> pulling_impulse, next_pulling_impulse;
   };
 } // namespace sable::mpm
 
