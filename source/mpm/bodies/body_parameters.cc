@@ -3,10 +3,9 @@
 #include <sable/base/input_error.h>
 #include <sable/base/named_choice.h>
 #include <sable/mpm/bodies/body_parameters.h>
-
-#include <array>
 #include <sable/mpm/parameter_tools.h>
 
+#include <array>
 #include <filesystem>
 
 namespace sable::mpm

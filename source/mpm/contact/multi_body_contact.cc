@@ -112,10 +112,7 @@ namespace sable::mpm
             mean[i][j] = sum[dim * dim] > 0 ? sum[i * dim + j] / sum[dim * dim] : double(i == j);
         body_rotations[b] = rotation_of(mean);
       }
-    for (unsigned int b = 0; b < n_bodies; ++b)
-      for (unsigned int k = face_direction_start[b]; k < face_direction_start[b + 1]; ++k)
-        face_directions[k] = body_rotations[b] * reference_face_directions[k];
-    model.set_face_directions(face_directions, face_direction_start);
+    model.turn_face_directions(body_rotations);
   }
 
   template <int dim>
@@ -171,15 +168,15 @@ namespace sable::mpm
         if (list.size() <= max_face_directions)
           add_distinct(list, n);
       }
-    reference_face_directions.clear();
-    face_direction_start.assign(1, 0);
+    std::vector<Tensor<1, dim>> directions;
+    std::vector<unsigned int>   start(1, 0);
     for (const auto &list : per_body)
       {
         if (list.size() <= max_face_directions)
-          reference_face_directions.insert(reference_face_directions.end(), list.begin(), list.end());
-        face_direction_start.push_back(reference_face_directions.size());
+          directions.insert(directions.end(), list.begin(), list.end());
+        start.push_back(directions.size());
       }
-    face_directions = reference_face_directions;
+    model.set_face_directions(std::move(directions), std::move(start));
   }
 
   template <int dim>

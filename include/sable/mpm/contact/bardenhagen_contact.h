@@ -119,16 +119,26 @@ namespace sable::mpm
       body_volumes       = volumes;
     }
 
-    /// Per body, the directions of its faces, turned with the body: the
-    /// distinct normals its points carry (MultiBodyContact), body b's
-    /// from @p start[b] to @p start[b + 1]; none for a body of too many
-    /// (a curved mesh), whose mixed records are corners.
+    /// Per body, the directions of its faces in the reference
+    /// configuration: the distinct normals its points carry
+    /// (MultiBodyContact), body b's from @p start[b] to @p start[b + 1];
+    /// none for a body of too many (a curved mesh), whose mixed records
+    /// are corners.
     void
-    set_face_directions(const std::vector<Tensor<1, dim>> &directions,
-                        const std::vector<unsigned int> &  start)
+    set_face_directions(std::vector<Tensor<1, dim>> reference, std::vector<unsigned int> start)
     {
-      face_directions      = directions;
-      face_direction_start = start;
+      reference_face_directions = std::move(reference);
+      face_directions           = reference_face_directions;
+      face_direction_start      = std::move(start);
+    }
+
+    /// Turn each body's face directions by its rotation @p rotations[b].
+    void
+    turn_face_directions(const std::vector<Tensor<2, dim>> &rotations)
+    {
+      for (unsigned int b = 0; b + 1 < face_direction_start.size(); ++b)
+        for (unsigned int k = face_direction_start[b]; k < face_direction_start[b + 1]; ++k)
+          face_directions[k] = rotations[b] * reference_face_directions[k];
     }
 
     /// Frictional work converted to heat so far (this rank's nodes;
@@ -419,8 +429,9 @@ namespace sable::mpm
     const ContactParameters   parameters;
     std::vector<unsigned int> body_groups;
     std::vector<double>       body_surface_radii, body_volumes;
-    /// set_face_directions()
-    std::vector<Tensor<1, dim>> face_directions;
+    /// set_face_directions(), and the same turned by
+    /// turn_face_directions()
+    std::vector<Tensor<1, dim>> reference_face_directions, face_directions;
     std::vector<unsigned int>   face_direction_start;
     /// index into pair_forces of the pair (a, b), a < b; or invalid
     std::vector<unsigned int> reported_pair_index;

@@ -327,17 +327,12 @@ namespace sable::mpm
     std::vector<bool>           bodies_with_normals;
     bool                        any_body_with_normals = false;
     std::vector<Tensor<2, dim>> body_rotations;
-    /// per body, the distinct reference normals its points carry (found
-    /// at the first step; none for a body of more than
-    /// max_face_directions), and the same turned by its rotation for the
-    /// kernel (BardenhagenContact::set_face_directions())
+    /// at most this many face directions per body (more: a curved mesh,
+    /// none kept)
     static constexpr unsigned int max_face_directions = 32;
-    std::vector<Tensor<1, dim>>   reference_face_directions;
-    std::vector<unsigned int>     face_direction_start;
-    std::vector<Tensor<1, dim>>   face_directions;
 
     /// The distinct reference normals of each body's points on all ranks,
-    /// into reference_face_directions (once).
+    /// to the kernel (BardenhagenContact::set_face_directions(); once).
     void
     find_face_directions(const ParticleCells<dim> &cells, const MPI_Comm communicator);
 
