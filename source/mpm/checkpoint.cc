@@ -48,14 +48,15 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 9: the contact pairs' pulling impulses; 8: the reported pairs'
+      /// 10: the points' depth below their face (with face normals); 9: the
+      /// contact pairs' pulling impulses; 8: the reported pairs'
       /// moments; 7: whether the last step's
       /// statistics row is due; 6: the scene's
       /// entries, compared on resume (5: the friction heat of the walls; 4: the run
       /// state as one RunState, the contact nodes as an output series;
       /// 3: the grid's base level and the grid output series; 1 and 2 have
       /// a coarse mesh of every subdivision cell)
-      static constexpr unsigned int current_format = 9;
+      static constexpr unsigned int current_format = 10;
       unsigned int          format         = current_format;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;

@@ -125,6 +125,17 @@ namespace sable::mpm
                       "Gravity = g sin(theta), -g cos(theta): 0, -g "
                       "cos(theta)), and the scene's Gravity acts from time 0. "
                       "Used only with Settling steps > 0.");
+    prm.declare_entry("Settling friction",
+                      "scene",
+                      Patterns::Selection("scene|stick"),
+                      "The friction between bodies and at friction walls "
+                      "while the bodies settle. 'scene': the scene's. "
+                      "'stick': no slip anywhere, so that a body that slides "
+                      "or rolls under the scene's gravity (a block or a disk "
+                      "on a slope) settles under that gravity where it was "
+                      "set down, its support with it, and starts from that "
+                      "equilibrium at time 0 with the scene's friction. "
+                      "Used only with Settling steps > 0.");
     prm.declare_entry("Settling tolerance",
                       "1e-8",
                       Patterns::Double(0),
@@ -322,7 +333,8 @@ namespace sable::mpm
                                                "Solver/Balance particles across ranks",
                                                "Solver/Settling steps",
                                                "Solver/Settling gravity",
-                                               "Solver/Settling tolerance"};
+                                               "Solver/Settling tolerance",
+                                               "Solver/Settling friction"};
     return free.count(name) > 0 || (name.rfind("Output/", 0) == 0 && name != "Output/Output format" &&
                                     name != "Output/Displacement output");
   }
@@ -413,6 +425,7 @@ namespace sable::mpm
     p.balance_particles = prm.get_bool("Balance particles across ranks");
     p.settling_steps    = prm.get_integer("Settling steps");
     p.settling_tolerance = prm.get_double("Settling tolerance");
+    p.settling_stick     = prm.get("Settling friction") == "stick";
     p.settling_gravity   = prm.get("Settling gravity").empty() ?
                              p.gravity :
                              read_vector<dim>(prm, "Settling gravity", "Solver/");

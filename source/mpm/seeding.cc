@@ -120,9 +120,17 @@ namespace sable::mpm
             {
               const double         cell = k * ParticleLayout<dim>::spacing_of_volume(volume);
               const Tensor<1, dim> normal =
-                body.surface_normal(x_body, surface_layer * cell, edge_margin * cell);
+                body.face_below(x_body, surface_layer * cell, edge_margin * cell).normal;
               for (unsigned int d = 0; d < dim; ++d)
                 properties[layout.surface_normal() + d] = normal[d];
+            }
+          if (layout.to_surface_stored)
+            {
+              const double         cell = k * ParticleLayout<dim>::spacing_of_volume(volume);
+              const Tensor<1, dim> to_surface =
+                body.to_surface(x_body, surface_layer * cell, edge_margin * cell);
+              for (unsigned int d = 0; d < dim; ++d)
+                properties[layout.to_surface() + d] = to_surface[d];
             }
           particle_handler.insert_particle(x, reference, next_id++, cell,
                                             make_array_view(properties));

@@ -36,6 +36,12 @@ namespace sable::mpm
     // the settling gravity acts in every pass until the clock starts
     const Tensor<1, dim> run_gravity = parameters.gravity;
     parameters.gravity               = parameters.settling_gravity;
+    const auto stick_everywhere = [&](const bool stick) {
+      boundary_conditions.stick_everywhere(stick);
+      if (contact)
+        contact->get_model().stick_everywhere(stick);
+    };
+    stick_everywhere(parameters.settling_stick);
     double       previous = 0, kinetic = 0, peak = std::numeric_limits<double>::max();
     double       strain_energy = 0;
     unsigned int n             = 0;
@@ -74,6 +80,7 @@ namespace sable::mpm
       }
     settling           = false;
     parameters.gravity = run_gravity;
+    stick_everywhere(false);
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
                 parameters.settling_steps,
@@ -135,6 +142,8 @@ namespace sable::mpm
           force = 0;
         for (auto &moment : model.pair_moments)
           moment = 0;
+        // pulls carried from the settling steps would cap the run's friction
+        model.set_pulling_impulses({});
       }
   }
 

@@ -135,6 +135,10 @@ namespace sable::mpm
     layout.surface_normal_stored =
       parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 &&
       parameters.contact.normals == ContactParameters::Normals::flatter_body && any_faces;
+    // the faces' positions for the contact's gap
+    layout.to_surface_stored =
+      parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 &&
+      parameters.contact.detection == ContactParameters::Detection::surface_position && any_faces;
     particle_to_grid.set_layout(layout);
     grid_to_particle.set_layout(layout);
     if (parameters.contact.model != ContactParameters::Model::none &&

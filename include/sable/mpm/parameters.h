@@ -80,6 +80,10 @@ namespace sable::mpm
     /// The gravity while settling: the scene's unless given (Solver/Settling
     /// gravity), e.g. its part normal to a slope a body would slide down.
     Tensor<1, dim> settling_gravity = {};
+    /// Whether contacts between bodies and friction walls stick while the
+    /// bodies settle (Solver/Settling friction = stick), so that a body
+    /// that slides or rolls under the scene's gravity settles under it.
+    bool settling_stick = false;
 
     /// Grid/Shape functions: linear, or GIMP on a uniform grid on one rank.
     ShapeFunctions shape_functions = ShapeFunctions::linear;

@@ -21,6 +21,8 @@ namespace sable::mpm
    *     if stored)
    *   | outward unit normal N of the body's face nearest the point in the
    *     reference configuration (dim, zero deeper inside, if stored)
+   *   | the vector from the point to its body's surface in the reference
+   *     configuration (dim, zero deeper inside, if stored)
    */
   template <int dim>
   struct ParticleLayout
@@ -46,6 +48,10 @@ namespace sable::mpm
     /// (the contact's `flatter body` normals).
     bool surface_normal_stored = false;
 
+    /// Whether each point carries the vector to its body's surface (the
+    /// contact's surface positions).
+    bool to_surface_stored = false;
+
     /// Offset of the initial position (if stored).
     unsigned int
     initial_position() const
@@ -70,7 +76,26 @@ namespace sable::mpm
     unsigned int
     n_properties() const
     {
+      return to_surface() + (to_surface_stored ? dim : 0);
+    }
+
+    /// Offset of the vector to the surface (if stored).
+    unsigned int
+    to_surface() const
+    {
       return surface_normal() + (surface_normal_stored ? dim : 0);
+    }
+
+    /// The point's vector to its body's surface in the reference
+    /// configuration (zero where it carries none), if the layout stores it.
+    template <typename Properties>
+    dealii::Tensor<1, dim>
+    reference_to_surface(const Properties &props) const
+    {
+      dealii::Tensor<1, dim> t;
+      for (unsigned int d = 0; d < dim; ++d)
+        t[d] = props[to_surface() + d];
+      return t;
     }
 
     /// The point's reference surface normal N (zero where it carries none),

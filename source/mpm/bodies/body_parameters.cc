@@ -132,12 +132,12 @@ namespace sable::mpm
   }
 
   template <int dim>
-  Tensor<1, dim>
-  BodyParameters<dim>::surface_normal(const Point<dim> &x,
-                                      const double      depth_limit,
-                                      const double      edge_margin) const
+  FaceBelow<dim>
+  BodyParameters<dim>::face_below(const Point<dim> &x,
+                                  const double      depth_limit,
+                                  const double      edge_margin) const
   {
-    Tensor<1, dim> normal;
+    FaceBelow<dim> face;
     // a disk's or sphere's points carry none: their mass gradient is
     // already the radial direction up to the lattice's staircase (carried
     // radial normals let unequal disks gain 1.7% energy head-on)
@@ -157,11 +157,29 @@ namespace sable::mpm
         for (unsigned int d = 0; d < dim; ++d)
           corner = corner || (d != axis && depth[d] <= edge_margin);
         if (depth[axis] <= depth_limit && !corner)
-          normal[axis] = x[axis] - lower_corner[axis] <= upper_corner[axis] - x[axis] ? -1. : 1.;
+          {
+            face.normal[axis] =
+              x[axis] - lower_corner[axis] <= upper_corner[axis] - x[axis] ? -1. : 1.;
+            face.depth = depth[axis];
+          }
       }
     else if (shape == Shape::mesh)
-      normal = mesh.surface_normal(x, depth_limit, edge_margin);
-    return normal;
+      face = mesh.face_below(x, depth_limit, edge_margin);
+    return face;
+  }
+
+  template <int dim>
+  Tensor<1, dim>
+  BodyParameters<dim>::to_surface(const Point<dim> &x,
+                                  const double      depth_limit,
+                                  const double      edge_margin) const
+  {
+    // a disk's or sphere's points carry none: with their radial vectors
+    // to the circle, a disk rolling on a wedge inclined to the grid lagged
+    // more (-1.5 to -4.7% at 20-45 degrees) than with the centroid's
+    // offset, which conforming seeding makes the same all round
+    const FaceBelow<dim> face = face_below(x, depth_limit, edge_margin);
+    return face.depth * face.normal;
   }
 
   template <int dim>

@@ -191,8 +191,8 @@ namespace sable::mpm
   }
 
   template <int dim>
-  Tensor<1, dim>
-  SurfaceFacets<dim>::nearest_normal(const Point<dim> &x,
+  FaceBelow<dim>
+  SurfaceFacets<dim>::nearest_face(const Point<dim> &x,
                                      const double      depth_limit,
                                      const double      edge_margin) const
   {
@@ -222,14 +222,14 @@ namespace sable::mpm
           }
       }
     if (best == nullptr || nearest > depth_limit)
-      return Tensor<1, dim>();
+      return {};
     // near an edge or a corner, where a facet of another direction is
     // within the margin, the face is ambiguous
     for (const Facet &facet : facets)
       if (facet.normal * best->normal < corner_cosine &&
           distance_to_facet<dim>(x, facet.vertices) <= edge_margin)
-        return Tensor<1, dim>();
-    return best->normal;
+        return {};
+    return {best->normal, (best->vertices[0] - x) * best->normal};
   }
 
   template class SurfaceFacets<2>;

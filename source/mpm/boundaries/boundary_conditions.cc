@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 namespace sable::mpm
@@ -135,7 +136,10 @@ namespace sable::mpm
             if (velocity * normal <= 0.)
               return -1.;
             const CoulombCorrection<dim> correction =
-              coulomb_correction(velocity, normal, wall.friction);
+              coulomb_correction(velocity,
+                                 normal,
+                                 sticking ? std::numeric_limits<double>::infinity() :
+                                            wall.friction);
             for (unsigned int d = 0; d < dim; ++d)
               v[d] += correction.change[d];
             return correction.tangential_fraction();

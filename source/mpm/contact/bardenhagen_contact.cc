@@ -311,8 +311,7 @@ namespace sable::mpm
     if (momentum_update)
       next_pulling_impulse.clear();
     totals.for_each([&](const auto &pair, const auto &total) {
-      const double mu =
-        parameters.friction_between(body_groups[pair.first], body_groups[pair.second]);
+      const double mu = friction_between_bodies(pair.first, pair.second);
       double pulled = 0;
       if (momentum_update)
         {
@@ -484,8 +483,7 @@ namespace sable::mpm
         for (unsigned int b = 0; b < n; ++b)
           if (b != a && begin[b].mass > begin[other].mass)
             other = b;
-        const double mu = parameters.friction_between(body_groups[r.body],
-                                                      body_groups[begin[other].body]);
+        const double mu = friction_between_bodies(r.body, begin[other].body);
         const CoulombCorrection<dim> correction = coulomb_correction(dv, normal[a], mu);
         change[a]                               = correction.change;
         friction[a]                             = correction.friction;
@@ -666,10 +664,8 @@ namespace sable::mpm
     // face, and the block hopped)
     if (!(r.mass_surface > 0) || r.mass_surface < 0.9 * r.mass)
       return Tensor<1, dim>();
-    // the normals agree within about a degree: one face
-    const double length = r.mass_surface_normal.norm();
-    if (length >= (1 - 1e-4) * r.mass_surface)
-      return r.mass_surface_normal / length;
+    if (on_one_face(r))
+      return r.mass_surface_normal / r.mass_surface_normal.norm();
     // points of two faces: those a cell or two deep near an edge reach the
     // nodes of both faces (a wedge's points near its side tilted the
     // slope's records under a cube's side planes by a few degrees); the
@@ -734,8 +730,10 @@ namespace sable::mpm
     // the surfaces meet within the step if the centroids' distance, less
     // what the bodies close along the normal in dt, is at most the distance
     // they have when touching (surfaces_meet())
-    const Tensor<1, dim> between = b.mass_position / b.mass - a.mass_position / a.mass;
-    double               cell    = 0;
+    const Tensor<1, dim> centroid_a = a.mass_position / a.mass;
+    const Tensor<1, dim> centroid_b = b.mass_position / b.mass;
+    const Tensor<1, dim> between    = centroid_b - centroid_a;
+    double               cell       = 0;
     for (unsigned int d = 0; d < dim; ++d)
       cell += std::pow(normal[d] * spacing[d], 2);
     // touching within a hundredth of a cell: bodies resting on each other
@@ -747,18 +745,28 @@ namespace sable::mpm
     // follows the spacing its points were seeded at (in cells along the
     // normal)
     const double size = std::sqrt(cell);
-    const double touching =
-      (surface_centroid_offset(a.mass_spacing / (a.mass * size)) +
-       surface_centroid_offset(b.mass_spacing / (b.mass * size)) + touching_tolerance) *
-      size;
+    // where a record's points lie under one flat face (boxes and meshes),
+    // the face is where their vectors to it end, whatever its angle to the
+    // grid and the points' registration with it: on a face inclined to
+    // the grid the centroid's offset varies from node to node along the
+    // staircase of points
+    double along    = between * normal;
+    double touching = touching_tolerance * size;
+    if (surface_known(a))
+      along += (centroid_a - a.mass_surface_point / a.mass_on_surface) * normal;
+    else
+      touching += surface_centroid_offset(a.mass_spacing / (a.mass * size)) * size;
+    if (surface_known(b))
+      along += (b.mass_surface_point / b.mass_on_surface - centroid_b) * normal;
+    else
+      touching += surface_centroid_offset(b.mass_spacing / (b.mass * size)) * size;
     // apart, a sideways offset of the centroids beyond a quarter cell
     // counts too: off the line of centres of two round bodies the normal
     // tilts away from their distance, and two disks felt a force a cell
     // before touching; up to a quarter cell is what an edge or a curved
     // surface covering part of a node's support shifts a centroid sideways.
     // Overlapping, the part along the normal says how far.
-    const double along      = between * normal;
-    const double sideways   = (between - along * normal).norm();
+    const double sideways   = (between - (between * normal) * normal).norm();
     const double beyond     = sideways - sideways_tolerance * std::sqrt(cell);
     const double separation = along > 0 && beyond > 0 ? std::hypot(along, beyond) : along;
     return {separation, touching};
@@ -857,8 +865,7 @@ namespace sable::mpm
               keep_pulling_impulse(ra.body, rb.body, measure && record_forces, owned, sums);
               continue;
             }
-          const double mu =
-            parameters.friction_between(body_groups[ra.body], body_groups[rb.body]);
+          const double mu = friction_between_bodies(ra.body, rb.body);
           const CoulombCorrection<dim> correction = coulomb_correction(dv, common, mu);
           Tensor<1, dim>               change_a   = correction.change;
           Tensor<1, dim>               friction_a = correction.friction;

@@ -77,13 +77,13 @@ namespace sable::mpm
     void
     set_surface(const ClosedSurface &surface);
 
-    /// The outward normal of the boundary facet nearest @p x (the cells'
-    /// faces no other cell shares, or the closed surface's triangles), as
-    /// SurfaceFacets::nearest_normal() gives it.
-    Tensor<1, dim>
-    surface_normal(const Point<dim> &x, const double depth_limit, const double edge_margin) const
+    /// The boundary facet nearest @p x (the cells' faces no other cell
+    /// shares, or the closed surface's triangles), as
+    /// SurfaceFacets::nearest_face() gives it.
+    FaceBelow<dim>
+    face_below(const Point<dim> &x, const double depth_limit, const double edge_margin) const
     {
-      return facets.nearest_normal(x, depth_limit, edge_margin);
+      return facets.nearest_face(x, depth_limit, edge_margin);
     }
 
   private:

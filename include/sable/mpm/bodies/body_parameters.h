@@ -119,13 +119,20 @@ namespace sable::mpm
     /// Whether @p x is inside a disk, box or mesh (never for points).
     bool
     contains(const Point<dim> &x) const;
-    /// The outward unit normal of the flat face nearest @p x (a box's, or
-    /// a mesh's boundary facet); zero if @p x lies deeper than
-    /// @p depth_limit, if a face of another direction is within
-    /// @p edge_margin (near an edge or a corner), or if the shape has no
-    /// flat faces (disk, sphere, points).
+    /// The flat face nearest @p x (a box's, or a mesh's boundary facet):
+    /// its outward unit normal and the depth of @p x below it; a zero
+    /// normal if @p x lies deeper than @p depth_limit, if a face of another
+    /// direction is within @p edge_margin (near an edge or a corner), or if
+    /// the shape has no flat faces (disk, sphere, points).
+    FaceBelow<dim>
+    face_below(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
+
+    /// The vector from @p x to the flat face it lies under, along the
+    /// face's normal (face_below()); zero where face_below() gives no face
+    /// (deeper than @p depth_limit, near an edge or a corner, a shape
+    /// without flat faces).
     Tensor<1, dim>
-    surface_normal(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
+    to_surface(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
 
     /// The point of the shape lowest in the potential −g·x (where p = 0).
     Point<dim>

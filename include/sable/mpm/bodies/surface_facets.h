@@ -19,6 +19,18 @@ namespace sable::mpm
    * mass gradient at a node tilts from node to node; the face's own normal
    * does not.
    */
+  /**
+   * The face of a body that a point lies under: its outward unit normal
+   * and the point's depth below the face's plane, so that x + depth normal
+   * lies on the face. A zero normal where the point lies under none.
+   */
+  template <int dim>
+  struct FaceBelow
+  {
+    Tensor<1, dim> normal;
+    double         depth = 0;
+  };
+
   template <int dim>
   class SurfaceFacets
   {
@@ -44,12 +56,13 @@ namespace sable::mpm
     void
     set_from_triangles(const std::vector<std::array<Point<dim>, dim>> &triangles);
 
-    /// The outward normal of the facet nearest @p x; zero if that facet is
-    /// farther than @p depth_limit (or there are none), or if a facet of
-    /// another direction is within @p edge_margin (@p x near an edge or a
-    /// corner, where the face is ambiguous). O(facets).
-    Tensor<1, dim>
-    nearest_normal(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
+    /// The outward normal of the facet nearest @p x and the depth of @p x
+    /// below the facet's plane; a zero normal if that facet is farther than
+    /// @p depth_limit (or there are none), or if a facet of another
+    /// direction is within @p edge_margin (@p x near an edge or a corner,
+    /// where the face is ambiguous). O(facets).
+    FaceBelow<dim>
+    nearest_face(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
 
     unsigned int
     n_facets() const

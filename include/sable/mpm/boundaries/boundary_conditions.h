@@ -102,6 +102,15 @@ namespace sable::mpm
     /// (count_heat_on_remapped()).
     double frictional_heat = 0;
 
+    /// While @p stick, friction walls hold the tangential velocity
+    /// (infinite friction): bodies settling on a slope (Solver/Settling
+    /// friction).
+    void
+    stick_everywhere(const bool stick)
+    {
+      sticking = stick;
+    }
+
     /// Count the friction walls' heat in MUSL's remapped pass
     /// (count_heat_on_remapped()) instead of at the corrected velocities;
     /// see MultiBodyContact::count_heat_at_remapped_velocities(). Without
@@ -193,6 +202,7 @@ namespace sable::mpm
                        double &              dissipation) const;
 
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
+    bool                                                  sticking = false;
     std::vector<NodeConstraint>                            constraints;
     /// per relevant node: whether some constraint acts there
     std::vector<bool> constrained;

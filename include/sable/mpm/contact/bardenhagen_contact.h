@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <utility>
+#include <limits>
 #include <vector>
 
 namespace sable::mpm
@@ -147,6 +148,15 @@ namespace sable::mpm
     /// remapped velocities under MUSL; here, at the nodes, under USL
     /// (count_heat_at_nodes()).
     double frictional_heat = 0;
+
+    /// While @p stick, every pair of bodies sticks (infinite friction),
+    /// whatever the scene's coefficients: bodies settling on a slope
+    /// (Solver/Settling friction).
+    void
+    stick_everywhere(const bool stick)
+    {
+      sticking = stick;
+    }
 
     /// Whether apply() counts the heat from the nodal velocities the
     /// correction leaves (USL; the default), or leaves it to the remapped
@@ -352,6 +362,26 @@ namespace sable::mpm
     Tensor<1, dim>
     face_normal(const typename BodyFields<dim>::Record &r) const;
 
+    /// Whether nine tenths of @p r's mass carries a face normal and those
+    /// normals agree within about a degree: the points lie under one flat
+    /// face.
+    static bool
+    on_one_face(const typename BodyFields<dim>::Record &r)
+    {
+      return r.mass_surface > 0 && r.mass_surface >= 0.9 * r.mass &&
+             r.mass_surface_normal.norm() >= (1 - 1e-4) * r.mass_surface;
+    }
+
+    /// Whether nine tenths of @p r's mass carries the vector to its body's
+    /// face, and, where the points carry face normals, they lie under one
+    /// face: Record::mass_surface_point then locates the surface.
+    static bool
+    surface_known(const typename BodyFields<dim>::Record &r)
+    {
+      return r.mass_on_surface > 0 && r.mass_on_surface >= 0.9 * r.mass &&
+             (r.mass_surface == 0 || on_one_face(r));
+    }
+
     /// With 'Detection = surface position': the gap between the surfaces
     /// of the bodies of @p a and @p b along @p normal (out of a).
     SurfaceGap
@@ -427,6 +457,16 @@ namespace sable::mpm
                          NodeSums &         sums) const;
 
     const ContactParameters   parameters;
+    bool                      sticking = false;
+
+    /// The friction coefficient between the bodies of @p body_a and
+    /// @p body_b (infinite while sticking).
+    double
+    friction_between_bodies(const unsigned int body_a, const unsigned int body_b) const
+    {
+      return sticking ? std::numeric_limits<double>::infinity() :
+                        parameters.friction_between(body_groups[body_a], body_groups[body_b]);
+    }
     std::vector<unsigned int> body_groups;
     std::vector<double>       body_surface_radii, body_volumes;
     /// set_face_directions(), and the same turned by

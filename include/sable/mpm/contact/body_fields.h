@@ -49,6 +49,13 @@ namespace sable::mpm
       /// sum_p m_p N over the same points: at most mass; as large as the
       /// length of mass_surface_normal where they all lie under one face
       double mass_surface;
+      /// sum_p m_p N (x_p + t_p) over the points that carry the vector
+      /// t_p to their body's surface (ParticleLayout::to_surface_stored):
+      /// over mass_on_surface, a point on the surface near the node,
+      /// whatever the registration of the points with the grid
+      Tensor<1, dim> mass_surface_point;
+      /// sum_p m_p N over the same points
+      double mass_on_surface;
       Tensor<1, dim>          old_velocity;
       Tensor<1, dim>          new_velocity;
       /// set by the contact pass after the momentum update, for output:

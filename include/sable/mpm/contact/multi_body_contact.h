@@ -113,6 +113,13 @@ namespace sable::mpm
       const bool carries_normal = surface_normal.norm_square() > 0;
       if (carries_normal)
         surface_normal = body_rotations[body] * surface_normal;
+      // the vector to the body's surface, carried by the material's
+      // deformation (F turns and stretches it with the point)
+      Tensor<1, dim> to_surface;
+      if (pass == GridPass::momentum_update && with_position && layout.to_surface_stored)
+        to_surface = ParticleLayout<dim>::deformation_gradient(properties) *
+                     layout.reference_to_surface(properties);
+      const bool carries_surface = to_surface.norm_square() > 0;
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {
           if (!fields.is_contact_node(shape.nodes[v]))
@@ -135,6 +142,12 @@ namespace sable::mpm
                 {
                   record.mass_surface_normal += weight * surface_normal;
                   record.mass_surface += weight;
+                }
+              if (with_position && carries_surface)
+                {
+                  record.mass_surface_point +=
+                    weight * (shape.image_for_node(location, v) + to_surface);
+                  record.mass_on_surface += weight;
                 }
               if (with_regression)
                 samples[fields.index_of(record)].push_back(
