@@ -91,8 +91,9 @@ namespace sable::mpm
                        significant_digits(parameters.settling_tolerance) + " times the strain energy " +
                        significant_digits(strain_energy) + " J" :
                      "the kinetic energy was still rising, " + significant_digits(kinetic) + " J") +
-                  "; a body free to slide or roll under the gravity, such as a disk "
-                  "on a slope, never settles: settle it under the part of gravity normal "
+                  "; a body free to slide or roll under the gravity never settles: hold "
+                  "a block on a slope by friction while it settles, 'Solver/Settling "
+                  "friction = stick', or settle a disk under the part of gravity normal "
                   "to the slope, 'Solver/Settling gravity')");
     pcout << "Settled under gravity in " << n + 1 << " steps (" << state.time
           << " s of damped motion)" << std::endl;
