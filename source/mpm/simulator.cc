@@ -135,10 +135,11 @@ namespace sable::mpm
     layout.surface_normal_stored =
       parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 &&
       parameters.contact.normals == ContactParameters::Normals::flatter_body && any_faces;
-    // the faces' positions for the contact's gap
+    // the faces' positions for the contact's gap, where the face normals
+    // tell which records lie under one face
     layout.to_surface_stored =
-      parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 &&
-      parameters.contact.detection == ContactParameters::Detection::surface_position && any_faces;
+      layout.surface_normal_stored &&
+      parameters.contact.detection == ContactParameters::Detection::surface_position;
     particle_to_grid.set_layout(layout);
     grid_to_particle.set_layout(layout);
     if (parameters.contact.model != ContactParameters::Model::none &&

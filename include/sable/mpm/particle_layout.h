@@ -48,8 +48,8 @@ namespace sable::mpm
     /// (the contact's `flatter body` normals).
     bool surface_normal_stored = false;
 
-    /// Whether each point carries the vector to its body's surface (the
-    /// contact's surface positions).
+    /// Whether each point carries the vector to its body's face (with the
+    /// surface normal, for the contact's surface positions).
     bool to_surface_stored = false;
 
     /// Offset of the initial position (if stored).

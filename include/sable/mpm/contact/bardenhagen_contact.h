@@ -372,14 +372,13 @@ namespace sable::mpm
              r.mass_surface_normal.norm() >= (1 - 1e-4) * r.mass_surface;
     }
 
-    /// Whether nine tenths of @p r's mass carries the vector to its body's
-    /// face, and, where the points carry face normals, they lie under one
-    /// face: Record::mass_surface_point then locates the surface.
+    /// Whether @p r's points lie under one face (on_one_face()) and nine
+    /// tenths of its mass carries the vector to it: Record::mass_surface_point
+    /// then locates the surface.
     static bool
     surface_known(const typename BodyFields<dim>::Record &r)
     {
-      return r.mass_on_surface > 0 && r.mass_on_surface >= 0.9 * r.mass &&
-             (r.mass_surface == 0 || on_one_face(r));
+      return on_one_face(r) && r.mass_on_surface >= 0.9 * r.mass;
     }
 
     /// With 'Detection = surface position': the gap between the surfaces
