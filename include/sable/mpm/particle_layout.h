@@ -92,10 +92,7 @@ namespace sable::mpm
     dealii::Tensor<1, dim>
     reference_to_surface(const Properties &props) const
     {
-      dealii::Tensor<1, dim> t;
-      for (unsigned int d = 0; d < dim; ++d)
-        t[d] = props[to_surface() + d];
-      return t;
+      return vector_at(props, to_surface());
     }
 
     /// The point's reference surface normal N (zero where it carries none),
@@ -104,10 +101,18 @@ namespace sable::mpm
     dealii::Tensor<1, dim>
     reference_surface_normal(const Properties &props) const
     {
-      dealii::Tensor<1, dim> N;
+      return vector_at(props, surface_normal());
+    }
+
+    /// The dim properties from @p offset on, as a vector.
+    template <typename Properties>
+    static dealii::Tensor<1, dim>
+    vector_at(const Properties &props, const unsigned int offset)
+    {
+      dealii::Tensor<1, dim> v;
       for (unsigned int d = 0; d < dim; ++d)
-        N[d] = props[surface_normal() + d];
-      return N;
+        v[d] = props[offset + d];
+      return v;
     }
 
     /// Index among the stress components (xx yy zz xy xz yz) of (i, j).
