@@ -48,7 +48,7 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 10: the points' depth below their face (with face normals); 9: the
+      /// 10: the points' vectors to their face (with face normals); 9: the
       /// contact pairs' pulling impulses; 8: the reported pairs'
       /// moments; 7: whether the last step's
       /// statistics row is due; 6: the scene's
