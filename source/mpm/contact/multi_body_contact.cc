@@ -528,6 +528,14 @@ namespace sable::mpm
               r->mass_position *= factor;
               r->mass_spacing *= factor;
               r->mass_stress *= factor;
+              // the face normals' sums with the mass: the contact compares
+              // them with it (nine tenths of the mass under one face), and a
+              // driven box or mesh body lost its face normals. The located
+              // faces' sums stay as they are, so a driven body's gap comes
+              // from its centroids: located, A4's fixed ceiling carried no
+              // load (doc/validation.md, "A rigid wedge")
+              r->mass_surface_normal *= factor;
+              r->mass_surface *= factor;
               r->old_velocity = velocity;
               r->new_velocity = velocity;
             }
