@@ -5,6 +5,7 @@
 #include <sable/mpm/seeding.h>
 #include <sable/mpm/simulator.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace sable::mpm
@@ -81,6 +82,14 @@ namespace sable::mpm
     settling           = false;
     parameters.gravity = run_gravity;
     stick_everywhere(false);
+    // disks seeded conforming keep kinetic peaks of 5e-8 to 3e-7 of the
+    // strain energy on a floor or a body (doc/validation.md, "Disks at
+    // rest: lattice and conforming seeding")
+    const bool conforming_disks =
+      std::any_of(parameters.bodies.begin(), parameters.bodies.end(), [](const auto &body) {
+        return body.shape == BodyParameters<dim>::Shape::disk &&
+               body.seeding == BodyParameters<dim>::Seeding::conforming;
+      });
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
                 parameters.settling_steps,
@@ -94,7 +103,13 @@ namespace sable::mpm
                   "; a body free to slide or roll under the gravity never settles: hold "
                   "a block on a slope by friction while it settles, 'Solver/Settling "
                   "friction = stick', or settle a disk under the part of gravity normal "
-                  "to the slope, 'Solver/Settling gravity')");
+                  "to the slope, 'Solver/Settling gravity'" +
+                  (conforming_disks ?
+                     std::string("; disks seeded conforming may not settle below about 1e-6 "
+                                 "on a floor or a body, where disks seeded on the lattice do "
+                                 "(doc/mpm.md, \"Starting settled\")") :
+                     std::string()) +
+                  ")");
     pcout << "Settled under gravity in " << n + 1 << " steps (" << state.time
           << " s of damped motion)" << std::endl;
 
