@@ -637,11 +637,7 @@ namespace sable::mpm
             // bodies' surfaces across it (and a block's corner or a disk's
             // staircase edge tilts it), which drags a sliding body and
             // damps collisions
-            const auto flatness = [&](const unsigned int body) {
-              return std::make_tuple(body_surface_radii[body], body_volumes[body], -double(body));
-            };
-            common = flatness(a.body) > flatness(b.body) ? direction_a :
-                                                           Tensor<1, dim>(-direction_b);
+            common = flatter(a.body, b.body) ? direction_a : Tensor<1, dim>(-direction_b);
           }
         else
           common = a.mass >= b.mass ? normal_a : Tensor<1, dim>(-normal_b);
@@ -685,6 +681,23 @@ namespace sable::mpm
           }
       }
     return largest >= 0.9 * r.mass ? direction : Tensor<1, dim>();
+  }
+
+  template <int dim>
+  bool
+  BardenhagenContact<dim>::flatter(const unsigned int p, const unsigned int q) const
+  {
+    if (body_surface_radii[p] != body_surface_radii[q])
+      return body_surface_radii[p] > body_surface_radii[q];
+    // the volumes are sums over the points, whose round-off follows the
+    // points' order and the MPI ranks: between two equal disks seeded
+    // conforming the choice followed that round-off, and one and two
+    // ranks took different normals (their runs took different numbers of
+    // steps)
+    const double volume_p = body_volumes[p], volume_q = body_volumes[q];
+    if (std::abs(volume_p - volume_q) > 1e-9 * std::max(volume_p, volume_q))
+      return volume_p > volume_q;
+    return p < q;
   }
 
   template <int dim>

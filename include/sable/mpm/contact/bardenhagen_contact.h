@@ -344,6 +344,13 @@ namespace sable::mpm
                 const Tensor<1, dim> &                  normal_a,
                 const Tensor<1, dim> &                  normal_b) const;
 
+    /// With 'Normals = flatter body': whether body @p p's surface is
+    /// flatter than body @p q's: the larger radius of curvature (a box or
+    /// mesh before a disk or sphere, a larger disk before a smaller one),
+    /// then the larger volume (within 1e-9), then the body listed first.
+    bool
+    flatter(const unsigned int p, const unsigned int q) const;
+
     /// With 'Normals = fitted at edges': whether two bodies with unit
     /// outward directions @p normal_a and @p normal_b at a node meet there
     /// at an edge, where contact acts only while they approach (the 2000
