@@ -114,23 +114,20 @@ namespace sable::mpm
           if (layout.initial_position_stored)
             for (unsigned int d = 0; d < dim; ++d)
               properties[layout.initial_position() + d] = x[d];
-          // the surface's normal for the points within two cells of it
-          // (four layers at two points per cell direction)
+          // the face the points within two cells of it (four layers at two
+          // points per cell direction) lie under: its normal, and the vector
+          // to it where the contact locates faces (to_surface_stored implies
+          // surface_normal_stored)
           if (layout.surface_normal_stored)
             {
               const double         cell = k * ParticleLayout<dim>::spacing_of_volume(volume);
-              const Tensor<1, dim> normal =
-                body.face_below(x_body, surface_layer * cell, edge_margin * cell).normal;
+              const FaceBelow<dim> face =
+                body.face_below(x_body, surface_layer * cell, edge_margin * cell);
               for (unsigned int d = 0; d < dim; ++d)
-                properties[layout.surface_normal() + d] = normal[d];
-            }
-          if (layout.to_surface_stored)
-            {
-              const double         cell = k * ParticleLayout<dim>::spacing_of_volume(volume);
-              const Tensor<1, dim> to_surface =
-                body.to_surface(x_body, surface_layer * cell, edge_margin * cell);
-              for (unsigned int d = 0; d < dim; ++d)
-                properties[layout.to_surface() + d] = to_surface[d];
+                properties[layout.surface_normal() + d] = face.normal[d];
+              if (layout.to_surface_stored)
+                for (unsigned int d = 0; d < dim; ++d)
+                  properties[layout.to_surface() + d] = face.depth * face.normal[d];
             }
           particle_handler.insert_particle(x, reference, next_id++, cell,
                                             make_array_view(properties));

@@ -140,7 +140,12 @@ namespace sable::mpm
     FaceBelow<dim> face;
     // a disk's or sphere's points carry none: their mass gradient is
     // already the radial direction up to the lattice's staircase (carried
-    // radial normals let unequal disks gain 1.7% energy head-on)
+    // radial normals let unequal disks gain 1.7% energy head-on). Nor do
+    // they carry vectors to their circle: a conforming disk rolling on a
+    // wedge then lagged more (-1.5 to -4.7% at 20-45 degrees), and lattice
+    // disks rolled within 0.9% but A3 came out +15.5% at R/4 and A4's
+    // waves lost their arrivals (doc/validation.md, "Rolling and sliding
+    // disks")
     if (shape == Shape::box)
       {
         // the nearest face, unless a face of another axis is within
@@ -166,25 +171,6 @@ namespace sable::mpm
     else if (shape == Shape::mesh)
       face = mesh.face_below(x, depth_limit, edge_margin);
     return face;
-  }
-
-  template <int dim>
-  Tensor<1, dim>
-  BodyParameters<dim>::to_surface(const Point<dim> &x,
-                                  const double      depth_limit,
-                                  const double      edge_margin) const
-  {
-    // a disk's or sphere's points carry none. With their radial vectors
-    // to the circle a conforming disk rolling on a wedge inclined to the
-    // grid lagged more (-1.5 to -4.7% at 20-45 degrees) than with the
-    // centroid's offset, which conforming seeding makes the same all
-    // round; a lattice disk rolling on a plane body lagged 0.1-0.7%
-    // instead of 4-14%, but the mean of the vectors' ends lies inside a
-    // curved surface by the sagitta over the node's reach, a third of a
-    // cell for grains of 6 cells per diameter, and the grains of a pile
-    // came within 0.06 point spacings of each other
-    const FaceBelow<dim> face = face_below(x, depth_limit, edge_margin);
-    return face.depth * face.normal;
   }
 
   template <int dim>

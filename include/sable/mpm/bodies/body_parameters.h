@@ -127,13 +127,6 @@ namespace sable::mpm
     FaceBelow<dim>
     face_below(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
 
-    /// The vector from @p x to the flat face it lies under, along the
-    /// face's normal (face_below()); zero where face_below() gives no face
-    /// (deeper than @p depth_limit, near an edge or a corner, a shape
-    /// without flat faces).
-    Tensor<1, dim>
-    to_surface(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
-
     /// The point of the shape lowest in the potential −g·x (where p = 0).
     Point<dim>
     top_point(const Tensor<1, dim> &gravity) const;
