@@ -9,9 +9,10 @@ cross the partition boundary, a plastic box squeezed by a moving wall, and
 two disks colliding with frictional contact across the partition boundary
 (ghost particles complete the per-body fields), with the default normals,
 with the planes fitted between the bodies' points, and with the planes
-fitted only where the bodies meet at an edge. The plastic box also on four
-ranks (oversubscribed): one of them holds no wall node, yet takes part in
-the reduction of the walls' work.
+fitted only where the bodies meet at an edge, and two equal disks seeded
+conforming meeting head-on, symmetric about the partition. The plastic
+box also on four ranks (oversubscribed): one of them holds no wall node,
+yet takes part in the reduction of the walls' work.
 
 Load balance: a box of material points in one corner of the grid. Without
 balancing, one rank holds all of them; with 'Solver/Balance particles
@@ -120,6 +121,13 @@ compare("contact_2d_regression", dict(contact_2d, **{"Contact/Normals": "logisti
 # the mass gradients the ghost particles complete
 compare("contact_2d_fitted_at_edges", dict(contact_2d, **{"Contact/Normals": "fitted at edges"}),
         colliding_disks)
+# two equal disks seeded conforming, mirror images across the partition
+# and centred on a grid line: no point of theirs lies on a cell face, whose
+# side one and two ranks chose differently (they parted from the first
+# contact, by 3e-5 of the strain energy)
+compare("contact_2d_conforming", contact_2d,
+        [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0", Seeding="conforming"),
+         dict(elastic, Shape="disk", Center="1.255, 0.5", Radius=0.2, Velocity="-5, 0", Seeding="conforming")])
 
 # 32 x 32 cells, a box of 8 x 8 cells with 4 x 4 points per cell (1024
 # points) in the lower left corner, moving and squeezed against the walls

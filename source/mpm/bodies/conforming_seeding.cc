@@ -22,12 +22,19 @@ namespace sable::mpm
         const double r     = 0.5 * (outer + inner);
         if (dim == 2)
           {
+            // a multiple of four points, half a step off the axes: the
+            // ring is its own mirror image across both axes through the
+            // centre and no point lies on them, so a disk centred on a
+            // grid line puts no point on a cell face, where the gradients
+            // of the linear functions jump and take the side of whichever
+            // cell holds the point (two equal disks meeting head-on on a
+            // grid line spun and drifted sideways)
             const unsigned int n =
-              std::max(1u, static_cast<unsigned int>(std::lround(2 * pi * r / thickness)));
+              4 * std::max(1u, static_cast<unsigned int>(std::lround(pi * r / (2 * thickness))));
             const double volume = pi * (outer * outer - inner * inner) / n;
             for (unsigned int i = 0; i < n; ++i)
               {
-                const double phi = 2 * pi * (i + 0.5 * (j % 2)) / n;
+                const double phi = 2 * pi * (i + 0.5) / n;
                 Point<dim>   x   = centre;
                 x[0] += r * std::cos(phi);
                 x[1] += r * std::sin(phi);
