@@ -48,11 +48,12 @@
    lag 4.8% and 4.4% (30 deg, 0.5 and 45 deg, 0.6); with 'Solver/Affine transfers'
    (GIMP and USL) checked within 1.5% of the rigid travel and with less
    than half the defaults' error (measured +0.13% and -0.67%).
-5. Two equal disks seeded conforming, centred on a grid line, meeting
-   head-on with mu = 0.5: the scene is its own mirror image across the
-   line of centres, so neither spins nor moves sideways (below 1e-9 of the
-   impact speed; measured 6e-14, 1.4e-2 when the rings put points on the
-   line).
+5. Two equal disks (spheres) seeded conforming, centred on a grid line,
+   meeting head-on with mu = 0.5: the scene is its own mirror image across
+   the line of centres, so neither spins nor moves sideways (below 1e-9 of
+   the impact speed; measured 6e-14 and 1e-13, 1.4e-2 when the rings put
+   points on the line and 7e-3 when the spheres' points lay on Fibonacci
+   spirals).
 """
 import math
 import os
@@ -182,24 +183,34 @@ for dim, cells, radius, mu in [(2, 80, 0.2, 0), (2, 80, 0.1, 0), (2, 80, 0.2, 0.
     check(f"{what}: restitution at most 1 and the disks rebound", 0 < restitution <= 1,
           f"e = {restitution:.3f}")
 
-# mirror symmetry: two equal disks seeded conforming, centred on a grid
-# line, meet head-on with friction: the scene is its own mirror image
-# across the line of centres, so neither disk may spin or move sideways
+# mirror symmetry: two equal disks (spheres) seeded conforming, centred on
+# a grid line, meet head-on with friction: the scene is its own mirror
+# image across the line of centres, so neither may spin or move sideways
 # (the rings once put points on the line, on cell faces, where the linear
 # functions' gradients jump and take the side of the cell holding the
-# point: the disks spun and moved sideways at 1.4e-2 of the impact speed)
-_, _, rows = run("head_on_mirror", {
-    "Dimension": 2, "Time/End time": 0.15, "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1",
-    "Grid/Subdivisions": "80, 40", "Contact/Model": "bardenhagen 2001", "Output/Statistics interval": 1,
-    "Contact/Friction coefficient": 0.5,
-}, [dict(disk, Radius=0.2, Center="0.7, 0.5", Velocity="2, 0", Seeding="conforming"),
-    dict(disk, Radius=0.2, Center="1.3, 0.5", Velocity="-2, 0", Seeding="conforming")])
-asymmetry = max(max(abs(r[f"body{b}_omega"]) * 0.2, abs(r[f"body{b}_vy"])) for r in rows for b in (0, 1))
-check("head-on, conforming disks centred on a grid line: no spin, no sideways motion "
-      "(|omega| R, |v_y| below 1e-9 of the impact speed)", asymmetry < 1e-9 * 2,
-      f"largest {asymmetry / 2:.1e} of the impact speed; the disks part at "
-      f"{rows[-1]['body1_vx'] - rows[-1]['body0_vx']:.3f} m/s")
-
+# point: the disks spun and moved sideways at 1.4e-2 of the impact speed;
+# the spheres, on Fibonacci spirals, at 7e-3)
+for dim in (2, 3):
+    rest = ", 0.5" if dim == 3 else ""
+    _, _, rows = run(f"head_on_mirror_{dim}d", {
+        "Dimension": dim, "Time/End time": 0.15, "Grid/Lower corner": ", ".join(["0"] * dim),
+        "Grid/Upper corner": "2, 1" + (", 1" if dim == 3 else ""),
+        "Grid/Subdivisions": "80, 40" if dim == 2 else "40, 20, 20",
+        "Contact/Model": "bardenhagen 2001", "Output/Statistics interval": 1,
+        "Contact/Friction coefficient": 0.5,
+    }, [dict(disk, Shape="disk" if dim == 2 else "sphere", Radius=0.2, Center="0.7, 0.5" + rest,
+             Velocity="2, 0" + (", 0" if dim == 3 else ""), Seeding="conforming"),
+        dict(disk, Shape="disk" if dim == 2 else "sphere", Radius=0.2, Center="1.3, 0.5" + rest,
+             Velocity="-2, 0" + (", 0" if dim == 3 else ""), Seeding="conforming")])
+    spins = [c for c in rows[0] if "_omega" in c]
+    sideways = [c for c in rows[0] if c[-3:] in ("_vy", "_vz")]
+    asymmetry = max(max(abs(r[c]) * 0.2 for r in rows for c in spins),
+                    max(abs(r[c]) for r in rows for c in sideways))
+    check(f"head-on, {dim}D, conforming {'disks' if dim == 2 else 'spheres'} centred on a grid line: "
+          "no spin, no sideways motion (|omega| R, sideways speed below 1e-9 of the impact speed)",
+          asymmetry < 1e-9 * 2,
+          f"largest {asymmetry / 2:.1e} of the impact speed; they part at "
+          f"{rows[-1]['body1_vx'] - rows[-1]['body0_vx']:.3f} m/s")
 
 def roll(name, theta, mu, cells_per_diameter=16, scheme={}):
     t = math.radians(theta)
