@@ -105,7 +105,7 @@ namespace sable::mpm
                   "friction = stick', or settle a disk under the part of gravity normal "
                   "to the slope, 'Solver/Settling gravity'" +
                   (conforming_disks ?
-                     std::string("; disks seeded conforming may need ten times the steps of "
+                     std::string("; disks seeded conforming may need over ten times the steps of "
                                  "disks seeded on the lattice, and on a friction floor may not "
                                  "settle at all (doc/mpm.md, \"Starting settled\")") :
                      std::string()) +

@@ -92,7 +92,7 @@ check("settling not reached: the message gives the last peak and the tolerance i
 
 
 # seeded conforming, a disk of 12.8 cells per diameter 0.3 cells off a
-# grid line needs 12,161 steps to settle on a friction floor, where the
+# grid line needs 16,559 steps to settle on a friction floor, where the
 # lattice needs 1,006 (doc/validation.md, "Disks at rest: lattice and
 # conforming seeding"): given 3,000 the message says why, and only when
 # such disks are in the scene
