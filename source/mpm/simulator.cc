@@ -765,6 +765,13 @@ namespace sable::mpm
                 << "'Output/Energy drift limit' = " << parameters.energy_drift_limit
                 << " (statistics.csv, column energy_drift); fastest material point at "
                 << to_string(fastest_point_location());
+        // the gain a free body makes when it rings while it moves or
+        // spins across the grid falls steeply with the step (doc/mpm.md)
+        if (parameters.cfl > 0.25)
+          message << "; bodies that ring while they move or spin across the grid gain energy "
+                  << "at large time steps (doc/mpm.md, \"Spinning bodies\"): a smaller "
+                  << "'Time/CFL number' than " << parameters.cfl
+                  << " (0.25, say) or 'Grid/Shape functions = gimp' reduces such a gain";
         throw std::runtime_error(message.str());
       }
     if (std::abs(s.energy_drift) > std::min(0.01, parameters.energy_drift_limit) && !drift_warned)
