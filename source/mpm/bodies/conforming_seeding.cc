@@ -44,9 +44,9 @@ namespace sable::mpm
           }
         else
           {
-            // latitude bands an even number of them, so none lies on the
-            // equator, each with a multiple of four points half a step off
-            // the meridian planes through the axes: the sphere is its own
+            // latitude bands, an even number of them so that none lies on
+            // the equator, each with a multiple of four points half a step
+            // off the meridian planes through the axes: the sphere is its own
             // mirror image across the three planes through its centre
             // along the axes, and no point lies on them (a Fibonacci
             // spiral, the layout before, is the mirror image of nothing:
