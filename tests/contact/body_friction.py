@@ -191,17 +191,17 @@ for dim, cells, radius, mu in [(2, 80, 0.2, 0), (2, 80, 0.1, 0), (2, 80, 0.2, 0.
 # point: the disks spun and moved sideways at 1.4e-2 of the impact speed;
 # the spheres, on Fibonacci spirals, at 7e-3)
 for dim in (2, 3):
-    rest = ", 0.5" if dim == 3 else ""
+    z = ", 0.5" if dim == 3 else ""
+    vz = ", 0" if dim == 3 else ""
+    ball = dict(disk, Shape="disk" if dim == 2 else "sphere", Radius=0.2, Seeding="conforming")
     _, _, rows = run(f"head_on_mirror_{dim}d", {
         "Dimension": dim, "Time/End time": 0.15, "Grid/Lower corner": ", ".join(["0"] * dim),
         "Grid/Upper corner": "2, 1" + (", 1" if dim == 3 else ""),
         "Grid/Subdivisions": "80, 40" if dim == 2 else "40, 20, 20",
         "Contact/Model": "bardenhagen 2001", "Output/Statistics interval": 1,
         "Contact/Friction coefficient": 0.5,
-    }, [dict(disk, Shape="disk" if dim == 2 else "sphere", Radius=0.2, Center="0.7, 0.5" + rest,
-             Velocity="2, 0" + (", 0" if dim == 3 else ""), Seeding="conforming"),
-        dict(disk, Shape="disk" if dim == 2 else "sphere", Radius=0.2, Center="1.3, 0.5" + rest,
-             Velocity="-2, 0" + (", 0" if dim == 3 else ""), Seeding="conforming")])
+    }, [dict(ball, Center="0.7, 0.5" + z, Velocity="2, 0" + vz),
+        dict(ball, Center="1.3, 0.5" + z, Velocity="-2, 0" + vz)])
     spins = [c for c in rows[0] if "_omega" in c]
     sideways = [c for c in rows[0] if c[-3:] in ("_vy", "_vz")]
     asymmetry = max(max(abs(r[c]) * 0.2 for r in rows for c in spins),

@@ -514,7 +514,7 @@ namespace
                              {disk(Point<2>(0.5, 0.6), 0.2, Tensor<1, 2>()),
                               block(Point<2>(0, 0), Point<2>(1, 0.4), 1e7)},
                              {20, 20}, Point<2>(1, 1));
-    scene.parameters.bodies[0].seeding        = seeding;
+    scene.parameters.bodies[0].seeding = seeding;
     const std::string name = seeding == BodyParameters<2>::Seeding::lattice ?
                                "resting grain (lattice)" :
                                "resting grain (conforming)";

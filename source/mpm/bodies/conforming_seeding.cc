@@ -11,8 +11,12 @@ namespace sable::mpm
   PointCloud<dim>
   conforming_ball_points(const Point<dim> &centre, const double radius, const double spacing)
   {
-    PointCloud<dim>    cloud;
-    const unsigned int n_layers  = std::max(1u, static_cast<unsigned int>(std::lround(radius / spacing)));
+    PointCloud<dim> cloud;
+    // a count: x rounded, at least one
+    const auto count = [](const double x) {
+      return std::max(1u, static_cast<unsigned int>(std::lround(x)));
+    };
+    const unsigned int n_layers  = count(radius / spacing);
     const double       thickness = radius / n_layers;
     const double       pi        = numbers::PI;
     for (unsigned int j = 0; j < n_layers; ++j)
@@ -29,9 +33,8 @@ namespace sable::mpm
             // of the linear functions jump and take the side of whichever
             // cell holds the point (two equal disks meeting head-on on a
             // grid line spun and drifted sideways)
-            const unsigned int n =
-              4 * std::max(1u, static_cast<unsigned int>(std::lround(pi * r / (2 * thickness))));
-            const double volume = pi * (outer * outer - inner * inner) / n;
+            const unsigned int n      = 4 * count(pi * r / (2 * thickness));
+            const double       volume = pi * (outer * outer - inner * inner) / n;
             for (unsigned int i = 0; i < n; ++i)
               {
                 const double phi = 2 * pi * (i + 0.5) / n;
@@ -55,16 +58,13 @@ namespace sable::mpm
             // of the shell's volume, so the rounding of the counts does
             // not change the density.
             const double       shell_volume = 4. / 3. * pi * (std::pow(outer, 3) - std::pow(inner, 3));
-            const unsigned int n_bands =
-              2 * std::max(1u, static_cast<unsigned int>(std::lround(pi * r / (2 * thickness))));
+            const unsigned int n_bands      = 2 * count(pi * r / (2 * thickness));
             for (unsigned int k = 0; k < n_bands; ++k)
               {
                 const double theta = pi * (k + 0.5) / n_bands;
                 const double band_area_fraction =
                   0.5 * (std::cos(pi * k / n_bands) - std::cos(pi * (k + 1) / n_bands));
-                const unsigned int n = 4 * std::max(1u,
-                                                    static_cast<unsigned int>(std::lround(
-                                                      pi * r * std::sin(theta) / (2 * thickness))));
+                const unsigned int n = 4 * count(pi * r * std::sin(theta) / (2 * thickness));
                 const double volume = shell_volume * band_area_fraction / n;
                 for (unsigned int i = 0; i < n; ++i)
                   {
