@@ -110,7 +110,8 @@ namespace sable::mpm
       return 0.;
     if constexpr (!momentum_update)
       {
-        boundary_conditions.count_heat_on_remapped(new_velocity, mass, n_owned_nodes());
+        if constexpr (pass == GridPass::remapped_momenta)
+          boundary_conditions.count_heat_on_remapped(new_velocity, mass, n_owned_nodes());
         boundary_conditions.apply_to_remapped(new_velocity, mass);
         return 0.;
       }
@@ -134,7 +135,9 @@ namespace sable::mpm
                                                              const double);
   SABLE_INSTANTIATE(2, GridPass::momentum_update)
   SABLE_INSTANTIATE(2, GridPass::remapped_momenta)
+  SABLE_INSTANTIATE(2, GridPass::initial_momenta)
   SABLE_INSTANTIATE(3, GridPass::momentum_update)
   SABLE_INSTANTIATE(3, GridPass::remapped_momenta)
+  SABLE_INSTANTIATE(3, GridPass::initial_momenta)
 #undef SABLE_INSTANTIATE
 } // namespace sable::mpm

@@ -19,7 +19,8 @@ namespace sable::mpm
   namespace
   {
     const NamedChoice<UpdateScheme> update_schemes{{"USL", UpdateScheme::usl},
-                                                   {"MUSL", UpdateScheme::musl}};
+                                                   {"MUSL", UpdateScheme::musl},
+                                                   {"USAVG", UpdateScheme::usavg}};
     const NamedChoice<OutputFormat> output_formats{{"vtu", OutputFormat::vtu},
                                                    {"hdf5", OutputFormat::hdf5}};
     const NamedChoice<ShapeFunctions> shape_function_kinds{{"linear", ShapeFunctions::linear},
@@ -73,7 +74,14 @@ namespace sable::mpm
                       "momentum update; MUSL first maps the updated particle "
                       "momenta back to the grid. USL is unstable at nodes "
                       "with little mass unless the CFL number is small (about "
-                      "0.02 for a body crossing cells); MUSL is not.");
+                      "0.02 for a body crossing cells); MUSL is not. USAVG "
+                      "updates the stresses in two halves, with the momenta "
+                      "at the start of the step mapped to the grid before the "
+                      "momentum update and with MUSL's remapped momenta after "
+                      "it (a midpoint rule): bodies that ring while they move "
+                      "or spin across the grid keep their energy where MUSL "
+                      "gains it at CFL numbers above 0.25 (doc/mpm.md, "
+                      "Spinning bodies); about a fifth more time per step.");
     prm.declare_entry("PIC fraction",
                       "0",
                       Patterns::Double(),

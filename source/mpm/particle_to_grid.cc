@@ -153,7 +153,9 @@ namespace sable::mpm
                                                    MultiBodyContact<dim> *) const;
   SABLE_INSTANTIATE(2, GridPass::momentum_update)
   SABLE_INSTANTIATE(2, GridPass::remapped_momenta)
+  SABLE_INSTANTIATE(2, GridPass::initial_momenta)
   SABLE_INSTANTIATE(3, GridPass::momentum_update)
   SABLE_INSTANTIATE(3, GridPass::remapped_momenta)
+  SABLE_INSTANTIATE(3, GridPass::initial_momenta)
 #undef SABLE_INSTANTIATE
 } // namespace sable::mpm

@@ -162,9 +162,9 @@ namespace sable::mpm
                     "rank (run it on one rank; threads are allowed)");
       }
 
-    // MUSL maps the points' velocities back to the grid after each update:
-    // the friction heat is counted against them (MultiBodyContact)
-    const bool heat_at_remap = parameters.update_scheme == UpdateScheme::musl;
+    // MUSL and USAVG map the points' velocities back to the grid after each
+    // update: the friction heat is counted against them (MultiBodyContact)
+    const bool heat_at_remap = parameters.update_scheme != UpdateScheme::usl;
     boundary_conditions.count_heat_at_remapped_velocities(heat_at_remap);
     if (contact)
       contact->count_heat_at_remapped_velocities(heat_at_remap);
@@ -355,7 +355,7 @@ namespace sable::mpm
     if (parallel)
       print_balance();
     print_seeding_note();
-    if (contact && parameters.update_scheme == UpdateScheme::musl &&
+    if (contact && parameters.update_scheme != UpdateScheme::usl &&
         !parameters.contact.on_strain_update)
       pcout << "note: 'Contact/Passes' leaves out the strain update: under MUSL the friction "
                "heat (contact_heat) is counted at the remapped velocities, which the contact "
@@ -468,6 +468,10 @@ namespace sable::mpm
         particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
       }
     particle_cells_current = false;
+    find_contact_nodes();
+    const bool usavg = parameters.update_scheme == UpdateScheme::usavg;
+    if (usavg)
+      update_stresses_from_initial_momenta();
     scatter_momenta_and_forces();
     update_nodal_velocities();
     if (parameters.update_scheme == UpdateScheme::usl)
@@ -479,7 +483,7 @@ namespace sable::mpm
         update_remapped_velocities();
         compute_strain_rates();
       }
-    update_stresses();
+    update_stresses(usavg ? 0.5 * state.time_step : state.time_step);
     sort_particles();
     advance_time();
     if (adaptation_due())
@@ -498,14 +502,51 @@ namespace sable::mpm
 
   template <int dim>
   void
+  Simulator<dim>::find_contact_nodes()
+  {
+    if (!contact)
+      return;
+    TimerOutput::Scope scope(timer, "particles to grid");
+    TimerOutput::Scope inner(timer, "find contact nodes (in particles to grid)");
+    contact->mark_contact_nodes(particle_cells, grid, layout, boundary_conditions);
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::update_stresses_from_initial_momenta()
+  {
+    {
+      TimerOutput::Scope scope(timer, "particles to grid");
+      particle_to_grid.template scatter<GridPass::initial_momenta>(particle_cells,
+                                                                   grid,
+                                                                   nodal_fields,
+                                                                   contact.get());
+    }
+    {
+      TimerOutput::Scope scope(timer, "grid update and boundaries");
+      nodal_fields.template compute_velocities<GridPass::initial_momenta>(boundary_conditions,
+                                                                          parameters.gravity,
+                                                                          state.time_step);
+      if (contact)
+        contact->template correct_velocities<GridPass::initial_momenta>(
+          grid,
+          boundary_conditions,
+          parameters.gravity,
+          state.time_step,
+          nodal_fields.n_owned_nodes());
+    }
+    compute_strain_rates();
+    update_stresses(0.5 * state.time_step);
+    // the momentum update scatters into the same records again
+    if (contact)
+      contact->zero_momenta();
+  }
+
+  template <int dim>
+  void
   Simulator<dim>::scatter_momenta_and_forces()
   {
     TimerOutput::Scope scope(timer, "particles to grid");
-    if (contact)
-      {
-        TimerOutput::Scope scope(timer, "find contact nodes (in particles to grid)");
-        contact->mark_contact_nodes(particle_cells, grid, layout, boundary_conditions);
-      }
     particle_to_grid.template scatter<GridPass::momentum_update>(particle_cells,
                                                                  grid,
                                                                  nodal_fields,
@@ -581,7 +622,7 @@ namespace sable::mpm
       {
         if (parallel)
           particle_handler->update_ghost_particles();
-        contact->begin_remap();
+        contact->zero_momenta();
       }
     particle_to_grid.template scatter<GridPass::remapped_momenta>(particle_cells,
                                                                   grid,
@@ -621,13 +662,13 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::update_stresses()
+  Simulator<dim>::update_stresses(const double time_step)
   {
     TimerOutput::Scope scope(timer, "stress update");
     const StressUpdate<dim> stress_update(materials, layout);
     const auto              failure = stress_update.update(particle_cells,
                                                            velocity_gradients,
-                                                           state.time_step);
+                                                           time_step);
     report_failure(failure.failed,
                    failure.location,
                    "a velocity or stress is not a finite number (NaN or infinity)");

@@ -4,16 +4,19 @@
 namespace sable::mpm
 {
   /**
-   * The two kinds of particle-to-grid pass of a step. Every step has the
+   * The kinds of particle-to-grid pass of a step. Every step has the
    * momentum update (mass, momentum and internal force: new nodal
-   * velocities, whose change moves the particles); MUSL adds a second pass
-   * that remaps the updated particle momenta to the grid for the strain
-   * update (mass and momentum only).
+   * velocities, whose change moves the particles); MUSL and USAVG add a
+   * pass that remaps the updated particle momenta to the grid for the
+   * strain update (mass and momentum only); USAVG also maps the momenta at
+   * the start of the step, for the first half of its strain update (mass
+   * and momentum only, no contact correction, no heat counted).
    */
   enum class GridPass
   {
     momentum_update,
-    remapped_momenta
+    remapped_momenta,
+    initial_momenta
   };
 } // namespace sable::mpm
 

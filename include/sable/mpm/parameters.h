@@ -38,7 +38,8 @@ namespace sable::mpm
   enum class UpdateScheme
   {
     usl,
-    musl
+    musl,
+    usavg
   };
 
   /// File format of the particle (and grid) output.

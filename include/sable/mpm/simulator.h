@@ -217,8 +217,17 @@ namespace sable::mpm
     // --- the phases of step(), in order ---
     double
     compute_time_step() const;
-    /// Find the contact nodes, then scatter mass, momentum and internal
-    /// forces to the single field and the bodies' fields.
+    /// This step's contact nodes (bodies per node), before the first
+    /// scatter.
+    void
+    find_contact_nodes();
+    /// USAVG: the points' momenta at the start of the step to the grid,
+    /// their velocities there with the walls' conditions, and the first
+    /// half of the strain update from them.
+    void
+    update_stresses_from_initial_momenta();
+    /// Scatter mass, momentum and internal forces to the single field and
+    /// the bodies' fields.
     void
     scatter_momenta_and_forces();
     /// Old and new nodal velocities, walls, contact.
@@ -239,9 +248,10 @@ namespace sable::mpm
     /// ... and the velocity gradients from them.
     void
     compute_strain_rates();
-    /// F and stress of every point from its velocity gradient.
+    /// F and stress of every point from its velocity gradient, over
+    /// @p time_step (USAVG: half the step, twice).
     void
-    update_stresses();
+    update_stresses(const double time_step);
     void
     sort_particles();
     /// The particle container in the order a sort leaves it (cells by
