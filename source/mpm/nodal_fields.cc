@@ -110,9 +110,13 @@ namespace sable::mpm
       return 0.;
     if constexpr (!momentum_update)
       {
-        if constexpr (pass == GridPass::remapped_momenta)
-          boundary_conditions.count_heat_on_remapped(new_velocity, mass, n_owned_nodes());
-        boundary_conditions.apply_to_remapped(new_velocity, mass);
+        if constexpr (pass == GridPass::initial_momenta)
+          boundary_conditions.apply_to_initial(new_velocity, mass);
+        else
+          {
+            boundary_conditions.count_heat_on_remapped(new_velocity, mass, n_owned_nodes());
+            boundary_conditions.apply_to_remapped(new_velocity, mass);
+          }
         return 0.;
       }
     else

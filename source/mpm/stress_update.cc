@@ -11,7 +11,8 @@ namespace sable::mpm
   typename StressUpdate<dim>::Failure
   StressUpdate<dim>::update(const ParticleCells<dim> &         cells,
                             const std::vector<Tensor<2, dim>> &velocity_gradients,
-                            const double                       time_step) const
+                            const double                       time_step,
+                            const std::vector<double> *        cell_time_steps) const
   {
     using Layout = ParticleLayout<dim>;
     // the stress components a material writes: in plane strain xx yy zz xy
@@ -32,10 +33,11 @@ namespace sable::mpm
         // the material update of the points from @p first on (consecutive
         // in their cell), then one finiteness test for the batch: x - x is
         // 0 for a finite x, NaN for NaN and infinity
+        double     dt           = time_step;
         const auto finish_batch = [&](const unsigned int body, auto first) {
           if (batch.size() == 0)
             return;
-          materials[body]->update_stresses(batch, time_step);
+          materials[body]->update_stresses(batch, dt);
           double residue = 0.;
           for (unsigned int p = 0; p < batch.size(); ++p)
             for (unsigned int c = 0; c < n_written; ++c)
@@ -54,6 +56,12 @@ namespace sable::mpm
 
         for (unsigned int c = begin; c < end; ++c)
           {
+            if (cell_time_steps != nullptr)
+              {
+                dt = (*cell_time_steps)[c];
+                if (dt == 0.)
+                  continue;
+              }
             const auto & particles = cells[c].particles;
             unsigned int body      = numbers::invalid_unsigned_int;
             auto         first     = particles.begin();
@@ -69,7 +77,7 @@ namespace sable::mpm
                   }
                 const Tensor<2, dim> &L = velocity_gradients[particle->get_local_index()];
                 Tensor<2, dim>        F = Layout::deformation_gradient(props);
-                F                       = (identity + time_step * L) * F;
+                F                       = (identity + dt * L) * F;
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Layout::deformation + i * dim + j] = F[i][j];

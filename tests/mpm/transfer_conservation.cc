@@ -6,7 +6,7 @@
 // with initial velocities and angular velocities move towards each other
 // inside the grid (less than a cell apart, so they share grid nodes and
 // collide in the single velocity field: the internal forces are not
-// trivial), no boundary conditions. For USL and MUSL, PIC fraction 0 and
+// trivial), no boundary conditions. For USL, MUSL and USAVG, PIC fraction 0 and
 // 0.5, without and with gravity g, over 20 steps:
 //  - total momentum P (compute_statistics().momentum) after each step equals
 //    P before the step + M g dt (M = total mass, dt = get_time_step()):
@@ -96,7 +96,9 @@ namespace
     const MPI_Comm     communicator = MPI_COMM_WORLD;
     const unsigned int n_ranks      = Utilities::MPI::n_mpi_processes(communicator);
     const std::string  name = std::to_string(dim) + "D " +
-                             (scheme == UpdateScheme::usl ? "USL" : "MUSL") + ", PIC " +
+                             (scheme == UpdateScheme::usl  ? "USL" :
+                              scheme == UpdateScheme::musl ? "MUSL" :
+                                                             "USAVG") + ", PIC " +
                              std::to_string(pic_fraction).substr(0, 3) +
                              (with_gravity ? ", gravity" : ", no gravity") +
                              (adaptive ? ", adaptive grid" : "") + (gimp ? ", GIMP" : "") +
@@ -307,7 +309,7 @@ main(int argc, char **argv)
     std::cout.setstate(std::ios::failbit);
 
   using sable::mpm::UpdateScheme;
-  for (const UpdateScheme scheme : {UpdateScheme::usl, UpdateScheme::musl})
+  for (const UpdateScheme scheme : {UpdateScheme::usl, UpdateScheme::musl, UpdateScheme::usavg})
     for (const double pic : {0., 0.5})
       for (const bool gravity : {false, true})
         {
@@ -318,10 +320,11 @@ main(int argc, char **argv)
   run_case<2>(UpdateScheme::musl, 0., true, true);
   run_case<3>(UpdateScheme::musl, 0., true, true);
   run_case<2>(UpdateScheme::usl, 0.5, true, true);
+  run_case<2>(UpdateScheme::usavg, 0., true, true);
   // GIMP (one rank only): its weights keep the partition of unity and
   // sum_k grad N_k = 0, next to the grid's faces too
   if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1)
-    for (const UpdateScheme scheme : {UpdateScheme::usl, UpdateScheme::musl})
+    for (const UpdateScheme scheme : {UpdateScheme::usl, UpdateScheme::musl, UpdateScheme::usavg})
       {
         run_case<2>(scheme, 0., true, false, true);
         run_case<3>(scheme, 0.5, true, false, true);

@@ -16,11 +16,14 @@
 # particle sort and of finding the contact nodes, and the instructions per
 # particle-step. box and floor run with 'Statistics interval' 1 (every
 # step) and 0 (the default), grains with 0.
-# Usage: contrib/benchmarks/throughput/callgrind.sh [build dir] [steps]
+# With a third argument, every scene runs with that 'Solver/Update scheme'
+# (USL, MUSL or USAVG) instead of the default.
+# Usage: contrib/benchmarks/throughput/callgrind.sh [build dir] [steps] [update scheme]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
 build="${1:-$root/build}"
 steps="${2:-20}"
+scheme="${3:-}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 source "$root/contrib/benchmarks/callgrind_functions.sh"
@@ -102,6 +105,11 @@ scene box "1, 1" "64, 64" "1, 1" "0, 0" "0: slip, 1: slip, 2: slip, 3: slip" \
   "Velocity = 0.1, 0.05" > "$work/box.prm"
 scene floor "2, 2" "256, 256" "1, 1" "0, -9.81" "2: fixed" "Density = 1000" > "$work/floor.prm"
 grains > "$work/grains.prm"
+if [ -n "$scheme" ]; then
+  for name in box floor grains; do
+    printf 'subsection Solver\n  set Update scheme = %s\nend\n' "$scheme" >> "$work/$name.prm"
+  done
+fi
 for run in box:1 box:0 floor:1 floor:0 grains:0; do
   name=${run%:*} interval=${run#*:}
   sed -i "s/Statistics interval = .*/Statistics interval = $interval/" "$work/$name.prm"

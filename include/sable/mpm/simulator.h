@@ -249,9 +249,10 @@ namespace sable::mpm
     void
     compute_strain_rates();
     /// F and stress of every point from its velocity gradient, over
-    /// @p time_step (USAVG: half the step, twice).
+    /// @p time_step (USAVG: half the step, twice), or per owned cell with
+    /// points over @p cell_time_steps.
     void
-    update_stresses(const double time_step);
+    update_stresses(const double time_step, const std::vector<double> *cell_time_steps = nullptr);
     void
     sort_particles();
     /// The particle container in the order a sort leaves it (cells by
@@ -373,6 +374,9 @@ namespace sable::mpm
     /// per locally owned particle (by local index): L = grad v of the
     /// strain update, from the grid-to-particle pass to the stress update
     std::vector<Tensor<2, dim>> velocity_gradients;
+    /// USAVG with contact: per owned cell with points, the time step of
+    /// its points' stress update in the current half of the step.
+    std::vector<double> stress_time_steps;
     GridToParticle<dim>         grid_to_particle;
     /// the cells with material points, rebuilt at the start of a step
     /// unless particle_cells_current

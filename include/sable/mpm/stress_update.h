@@ -40,10 +40,13 @@ namespace sable::mpm
       , layout(layout)
     {}
 
+    /// With @p cell_time_steps, the points of owned cell c take
+    /// (*cell_time_steps)[c] instead of @p time_step (0: left as they are).
     Failure
     update(const ParticleCells<dim> &         cells,
            const std::vector<Tensor<2, dim>> &velocity_gradients,
-           const double                       time_step) const;
+           const double                       time_step,
+           const std::vector<double> *        cell_time_steps = nullptr) const;
 
   private:
     const std::vector<std::unique_ptr<Material>> &materials;

@@ -65,8 +65,23 @@ namespace sable::mpm
                                   }),
                       constraints.end());
     constrained.assign(grid.n_relevant_nodes(), false);
+    friction_constrained.assign(grid.n_relevant_nodes(), false);
     for (const NodeConstraint &c : constraints)
-      constrained[c.node] = true;
+      {
+        constrained[c.node] = true;
+        if (parameters.find(c.id)->second.type == BoundaryType::friction)
+          friction_constrained[c.node] = true;
+      }
+  }
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::apply_to_initial(std::vector<double> &      velocity,
+                                            const std::vector<double> &mass) const
+  {
+    for (const NodeConstraint &c : constraints)
+      if (mass[c.node] > 0. && parameters.find(c.id)->second.type != BoundaryType::friction)
+        apply_one(c, &velocity[c.node * dim]);
   }
 
   template <int dim>

@@ -413,12 +413,6 @@ namespace sable::mpm
           }
       },
       256);
-    if constexpr (pass == GridPass::initial_momenta)
-      {
-        if (!boundary_conditions.empty())
-          boundary_conditions.apply_to_bodies(fields, true, n_owned_nodes);
-        return;
-      }
     if (!momentum_update && heat_at_remap)
       count_heat_on_remapped(boundary_conditions, time_step, n_owned_nodes);
     const bool drivers = prescribed != nullptr && prescribed->any();
@@ -554,12 +548,8 @@ namespace sable::mpm
     const Grid<2> &, BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
   template void MultiBodyContact<2>::correct_velocities<GridPass::remapped_momenta>(
     const Grid<2> &, BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
-  template void MultiBodyContact<2>::correct_velocities<GridPass::initial_momenta>(
-    const Grid<2> &, BoundaryConditions<2> &, const Tensor<1, 2> &, double, unsigned int);
   template void MultiBodyContact<3>::correct_velocities<GridPass::momentum_update>(
     const Grid<3> &, BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
   template void MultiBodyContact<3>::correct_velocities<GridPass::remapped_momenta>(
-    const Grid<3> &, BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
-  template void MultiBodyContact<3>::correct_velocities<GridPass::initial_momenta>(
     const Grid<3> &, BoundaryConditions<3> &, const Tensor<1, 3> &, double, unsigned int);
 } // namespace sable::mpm

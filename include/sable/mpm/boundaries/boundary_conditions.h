@@ -143,6 +143,15 @@ namespace sable::mpm
     }
 
     bool
+    has_friction_walls() const
+    {
+      for (const auto &[id, wall] : parameters)
+        if (wall.type == BoundaryType::friction)
+          return true;
+      return false;
+    }
+
+    bool
     empty() const
     {
       return constraints.empty();
@@ -157,6 +166,23 @@ namespace sable::mpm
     {
       return constrained;
     }
+
+    /// Per relevant node: whether a friction wall acts there (setup()).
+    const std::vector<bool> &
+    friction_wall_nodes() const
+    {
+      return friction_constrained;
+    }
+
+    /**
+     * Apply the conditions to the velocities of USAVG's momenta at the
+     * start of a step: those of the fixed, slip and moving walls. A
+     * friction wall's condition depends on its decision in the momentum
+     * update, which comes later: the points near its nodes take their
+     * whole strain update from the remapped momenta instead.
+     */
+    void
+    apply_to_initial(std::vector<double> &velocity, const std::vector<double> &mass) const;
 
   private:
     struct NodeConstraint
@@ -206,6 +232,8 @@ namespace sable::mpm
     std::vector<NodeConstraint>                            constraints;
     /// per relevant node: whether some constraint acts there
     std::vector<bool> constrained;
+    /// per relevant node: whether a friction wall's constraint acts there
+    std::vector<bool> friction_constrained;
     /// per constraint: the tangential speed a friction wall left in the
     /// last apply(), -1 where it did not act
     std::vector<double> slip_left;

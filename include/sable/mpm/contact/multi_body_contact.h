@@ -55,11 +55,10 @@ namespace sable::mpm
                        const ParticleLayout<dim> &      layout,
                        const BoundaryConditions<dim> &  boundary_conditions);
 
-    /// Zero the records' mass, momentum and force for another scatter on
-    /// the same contact nodes (MUSL's remapped momenta; after USAVG's
-    /// initial momenta, the momentum update).
+    /// Zero the records' mass, momentum and force for a second scatter
+    /// (MUSL's remapped momenta) on the same contact nodes.
     void
-    zero_momenta()
+    begin_remap()
     {
       fields.zero_momenta();
     }
@@ -167,9 +166,7 @@ namespace sable::mpm
      * The bodies' velocities at every contact node from their momenta
      * (and, in the momentum-update pass, forces and @p gravity over
      * @p time_step), then the contact correction if the scene applies it
-     * in this pass (never to USAVG's initial momenta: each body's strain
-     * then starts from its own velocities, which the last step's
-     * correction made), then the walls' conditions. @p n_owned_nodes: the
+     * in this pass, then the walls' conditions. @p n_owned_nodes: the
      * locally owned nodes come first; only they count in the sums.
      */
     template <GridPass pass>
