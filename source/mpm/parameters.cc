@@ -78,10 +78,12 @@ namespace sable::mpm
                       "updates the stresses in two halves, with the momenta "
                       "at the start of the step mapped to the grid before the "
                       "momentum update and with MUSL's remapped momenta after "
-                      "it (a midpoint rule): bodies that ring while they move "
-                      "or spin across the grid keep their energy where MUSL "
-                      "gains it at CFL numbers above 0.25 (doc/mpm.md, "
-                      "Spinning bodies); about a fifth more time per step.");
+                      "it (a midpoint rule; points near contact nodes and "
+                      "friction walls take MUSL's whole step): bodies that "
+                      "ring while they move or spin across the grid keep "
+                      "their energy where MUSL gains it at CFL numbers above "
+                      "0.25 (doc/mpm.md, Spinning bodies); about a third more "
+                      "time per step.");
     prm.declare_entry("PIC fraction",
                       "0",
                       Patterns::Double(),

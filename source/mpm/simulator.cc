@@ -529,7 +529,7 @@ namespace sable::mpm
     // block gained energy at each of its small bounces. The others read
     // the single field, which this pass fills without the bodies' records.
     const double half_step   = 0.5 * state.time_step;
-    const bool   split_cells = contact || boundary_conditions.has_friction_walls();
+    const bool   split_cells = contact || boundary_conditions.has_walls(BoundaryType::friction);
     stress_time_steps.clear();
     if (split_cells)
       {
@@ -589,7 +589,7 @@ namespace sable::mpm
                                                                           state.time_step);
     // only moving walls do work: no reduction over ranks otherwise; every
     // rank takes part, also one without boundary nodes
-    if (boundary_conditions.has_moving_walls())
+    if (boundary_conditions.has_walls(BoundaryType::moving))
       state.boundary_work += Utilities::MPI::sum(work, communicator);
     if (contact)
       {
@@ -841,7 +841,7 @@ namespace sable::mpm
                   << "at large time steps (doc/mpm.md, \"Spinning bodies\"): ";
         if (!usavg)
           message << "'Solver/Update scheme = USAVG' (the stress updated in two halves, about "
-                  << "a fifth to a half more time per step) keeps such a body's energy";
+                  << "a third more time per step) keeps such a body's energy";
         if (!usavg && parameters.cfl > 0.25)
           message << "; ";
         if (parameters.cfl > 0.25)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Instruction counts of the MPM step under valgrind's callgrind, which do
 # not depend on the load of a shared machine. Two 2D scenes, linear elastic,
-# 2x2 points per cell, MUSL, output off, one thread, 20 steps (or the
+# 2x2 points per cell, MUSL (or the scheme given), output off, one thread, 20 steps (or the
 # number given):
 #   box:   run.sh's box at 64^2 cells filling the grid, slip walls
 #          (16,384 points)

@@ -133,20 +133,12 @@ namespace sable::mpm
                            const std::vector<double> &mass,
                            const unsigned int         n_owned_nodes);
 
+    /// Whether some wall is of @p type.
     bool
-    has_moving_walls() const
+    has_walls(const BoundaryType type) const
     {
       for (const auto &[id, wall] : parameters)
-        if (wall.type == BoundaryType::moving)
-          return true;
-      return false;
-    }
-
-    bool
-    has_friction_walls() const
-    {
-      for (const auto &[id, wall] : parameters)
-        if (wall.type == BoundaryType::friction)
+        if (wall.type == type)
           return true;
       return false;
     }
