@@ -9,8 +9,9 @@ cross the partition boundary, a plastic box squeezed by a moving wall, and
 two disks colliding with frictional contact across the partition boundary
 (ghost particles complete the per-body fields), with the default normals,
 with the planes fitted between the bodies' points, and with the planes
-fitted only where the bodies meet at an edge, and two equal disks seeded
-conforming meeting head-on, symmetric about the partition. The plastic
+fitted only where the bodies meet at an edge, with the stress updated in
+two halves (USAVG), and two equal disks seeded conforming meeting
+head-on, symmetric about the partition. The plastic
 box also on four ranks (oversubscribed): one of them holds no wall node,
 yet takes part in the reduction of the walls' work.
 
@@ -114,6 +115,10 @@ contact_2d = {
 colliding_disks = [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0"),
                    dict(elastic, Shape="disk", Center="1.255, 0.56", Radius=0.2, Velocity="-5, 0")]
 compare("contact_2d", contact_2d, colliding_disks)
+# USAVG: its first half maps the momenta at the start of the step to the
+# grid across the partition, and which points take it depends on the contact
+# nodes the ghost particles complete
+compare("contact_2d_usavg", dict(contact_2d, **{"Solver/Update scheme": "USAVG"}), colliding_disks)
 # the planes fitted between the bodies' points read the ghost particles too
 compare("contact_2d_regression", dict(contact_2d, **{"Contact/Normals": "logistic regression"}),
         colliding_disks)

@@ -15,8 +15,9 @@ gather and the stress update (each point's own data only).
    refined at body surfaces and contacts every 4 steps, so that cells with
    hanging nodes scatter through the folded shape functions, and nodes with
    three bodies occur; pair forces of all six pairs are reported. The
-   same pile with 'Contact/Normals = logistic regression' and with
-   'fitted at edges' (one and two threads).
+   same pile with 'Contact/Normals = logistic regression', with
+   'fitted at edges' and with 'Solver/Update scheme = USAVG' (one and two
+   threads).
 
 A bad thread count stops with a message naming the option."""
 import csv
@@ -101,13 +102,18 @@ for name, arguments, environment in (("pile_two", ["--threads", "2"], {}),
 # node's samples come colour by colour, so their order, and the fit, does
 # not depend on the threads either; with 'fitted at edges' only where two
 # bodies meet at an edge, which the nodes decide from their complete mass
-# gradients
-for normals, tag in (("logistic regression", "fitted"), ("fitted at edges", "edges")):
-    scene = (dict(pile_entries, **{"Contact/Normals": normals}), pile)
+# gradients; and with the stress updated in two halves (USAVG), whose
+# first half each cell's points take or not by the contact nodes and the
+# friction floor's nodes it reaches
+for variant, tag in ((("Contact/Normals", "logistic regression"), "fitted"),
+                     (("Contact/Normals", "fitted at edges"), "edges"),
+                     (("Solver/Update scheme", "USAVG"), "usavg")):
+    scene = (dict(pile_entries, **{variant[0]: variant[1]}), pile)
+    what = f"{variant[0].split('/')[1]} = {variant[1]}"
     code, output, one = run_with(f"{tag}_one", [], {"SABLE_THREADS": ""}, scene)
-    check(f"pile, Normals = {normals}, one thread: runs", code == 0, output[-300:])
+    check(f"pile, {what}, one thread: runs", code == 0, output[-300:])
     code, output, text = run_with(f"{tag}_two", ["--threads", "2"], {}, scene)
-    check(f"pile, Normals = {normals}, two threads: same statistics.csv as one thread",
+    check(f"pile, {what}, two threads: same statistics.csv as one thread",
           code == 0 and text == one and one.count("\n") > 20, output[-300:])
 
 code, output, _ = run_with("bad", ["--threads", "two"], {})
