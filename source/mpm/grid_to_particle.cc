@@ -67,7 +67,8 @@ namespace sable::mpm
                                 const ParticleCells<dim> &       cells,
                                 const MultiBodyContact<dim> *    contact,
                                 const double                     time_step,
-                                const double                     alpha) const
+                                const double                     alpha,
+                                const std::vector<double> *      cell_time_steps) const
   {
     using Layout = ParticleLayout<dim>;
     if (update_strain_rates)
@@ -90,6 +91,8 @@ namespace sable::mpm
         typename Grid<dim>::Shape shape;
         for (unsigned int c = begin; c < end; ++c)
           {
+            if (cell_time_steps != nullptr && (*cell_time_steps)[c] == 0.)
+              continue;
             const auto &                        cell = cells[c];
             const typename Grid<dim>::CellData &data = *cell.data;
             for (auto &particle : cell.particles)
@@ -204,7 +207,8 @@ namespace sable::mpm
     const ParticleCells<dim> &,                                                    \
     const MultiBodyContact<dim> *,                                                 \
     const double,                                                                  \
-    const double) const;
+    const double,                                                                  \
+    const std::vector<double> *) const;
   SABLE_INSTANTIATE(2, true, false, false)
   SABLE_INSTANTIATE(2, false, true, false)
   SABLE_INSTANTIATE(2, false, true, true)

@@ -561,7 +561,9 @@ namespace sable::mpm
       TimerOutput::Scope scope(timer, "grid to particles");
       process_report(grid_to_particle.compute_strain_rates(*particle_handler,
                                                            particle_cells,
-                                                           nullptr),
+                                                           nullptr,
+                                                           split_cells ? &stress_time_steps :
+                                                                         nullptr),
                      false);
     }
     update_stresses(half_step, split_cells ? &stress_time_steps : nullptr);

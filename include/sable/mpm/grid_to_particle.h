@@ -91,15 +91,18 @@ namespace sable::mpm
         particle_handler, cells, contact, time_step, pic_fraction);
     }
 
-    /// The velocity gradients of the strain update (by local index).
+    /// The velocity gradients of the strain update (by local index); with
+    /// @p cell_time_steps only for the points of the owned cells c where
+    /// (*cell_time_steps)[c] is not 0 (those that update their stress).
     Report
     compute_strain_rates(Particles::ParticleHandler<dim> &particle_handler,
                          const ParticleCells<dim> &       cells,
-                         const MultiBodyContact<dim> *    contact) const
+                         const MultiBodyContact<dim> *    contact,
+                         const std::vector<double> *      cell_time_steps = nullptr) const
     {
       return layout.affine_stored ?
-               transfer<false, true, true>(particle_handler, cells, contact, 0., 0.) :
-               transfer<false, true, false>(particle_handler, cells, contact, 0., 0.);
+               transfer<false, true, true>(particle_handler, cells, contact, 0., 0., cell_time_steps) :
+               transfer<false, true, false>(particle_handler, cells, contact, 0., 0., cell_time_steps);
     }
 
     /// Both in one pass, from the same nodal velocities (USL).
@@ -134,7 +137,8 @@ namespace sable::mpm
              const ParticleCells<dim> &       cells,
              const MultiBodyContact<dim> *    contact,
              const double                     time_step,
-             const double                     pic_fraction) const;
+             const double                     pic_fraction,
+             const std::vector<double> *      cell_time_steps = nullptr) const;
 
     const Grid<dim> &            grid;
     const NodalFields<dim> &     fields;
