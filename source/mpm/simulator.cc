@@ -696,7 +696,9 @@ namespace sable::mpm
     const auto              failure = stress_update.update(particle_cells,
                                                            velocity_gradients,
                                                            time_step,
-                                                           cell_time_steps);
+                                                           cell_time_steps,
+                                                           parameters.update_scheme ==
+                                                             UpdateScheme::usavg);
     report_failure(failure.failed,
                    failure.location,
                    "a velocity or stress is not a finite number (NaN or infinity)");

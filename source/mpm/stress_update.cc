@@ -12,7 +12,8 @@ namespace sable::mpm
   StressUpdate<dim>::update(const ParticleCells<dim> &         cells,
                             const std::vector<Tensor<2, dim>> &velocity_gradients,
                             const double                       time_step,
-                            const std::vector<double> *        cell_time_steps) const
+                            const std::vector<double> *        cell_time_steps,
+                            const bool                         midpoint_deformation) const
   {
     using Layout = ParticleLayout<dim>;
     // the stress components a material writes: in plane strain xx yy zz xy
@@ -77,7 +78,9 @@ namespace sable::mpm
                   }
                 const Tensor<2, dim> &L = velocity_gradients[particle->get_local_index()];
                 Tensor<2, dim>        F = Layout::deformation_gradient(props);
-                F                       = (identity + dt * L) * F;
+                F = midpoint_deformation ?
+                      invert(identity - 0.5 * dt * L) * (identity + 0.5 * dt * L) * F :
+                      (identity + dt * L) * F;
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Layout::deformation + i * dim + j] = F[i][j];

@@ -42,11 +42,15 @@ namespace sable::mpm
 
     /// With @p cell_time_steps, the points of owned cell c take
     /// (*cell_time_steps)[c] instead of @p time_step (0: left as they are).
+    /// With @p midpoint_deformation, F <- (I - dt/2 L)^-1 (I + dt/2 L) F,
+    /// which keeps det F and turns F exactly under a spin (USAVG), instead
+    /// of F <- (I + dt L) F.
     Failure
     update(const ParticleCells<dim> &         cells,
            const std::vector<Tensor<2, dim>> &velocity_gradients,
            const double                       time_step,
-           const std::vector<double> *        cell_time_steps = nullptr) const;
+           const std::vector<double> *        cell_time_steps      = nullptr,
+           const bool                         midpoint_deformation = false) const;
 
   private:
     const std::vector<std::unique_ptr<Material>> &materials;
