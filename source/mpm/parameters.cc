@@ -82,8 +82,8 @@ namespace sable::mpm
                       "friction walls take MUSL's whole step): bodies that "
                       "ring while they move or spin across the grid keep "
                       "their energy where MUSL gains it at CFL numbers above "
-                      "0.25 (doc/mpm.md, Spinning bodies); about a third more "
-                      "time per step.");
+                      "0.25 (doc/mpm.md, Spinning bodies); a third to a half "
+                      "more time per step.");
     prm.declare_entry("PIC fraction",
                       "0",
                       Patterns::Double(),

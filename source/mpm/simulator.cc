@@ -844,8 +844,8 @@ namespace sable::mpm
           message << "; bodies that ring while they move or spin across the grid gain energy "
                   << "at large time steps (doc/mpm.md, \"Spinning bodies\"): ";
         if (!usavg)
-          message << "'Solver/Update scheme = USAVG' (the stress updated in two halves, about "
-                  << "a third more time per step) keeps such a body's energy";
+          message << "'Solver/Update scheme = USAVG' (the stress updated in two halves, a "
+                  << "third to a half more time per step) keeps such a body's energy";
         if (!usavg && parameters.cfl > 0.25)
           message << "; ";
         if (parameters.cfl > 0.25)
