@@ -28,51 +28,29 @@ MATERIAL = """  set Young's modulus = 1e6
   set Poisson's ratio = 0.3
   set Density = 1000
 """
+
+
+def scene(end_time, lower, upper, subdivisions, disks, contact=""):
+    """A scene without gravity: the grid, the contact section and one
+    elastic disk per (centre, radius, velocity, spin) of `disks`."""
+    text = (f"set Dimension = 2\nset Number of bodies = {len(disks)}\nset Gravity = 0, 0\n"
+            f"subsection Time\n  set End time = {end_time}\nend\n"
+            f"subsection Grid\n  set Lower corner = {lower}\n  set Upper corner = {upper}\n"
+            f"  set Subdivisions = {subdivisions}\nend\n")
+    if contact:
+        text += f"subsection Contact\n  set Model = {contact}\nend\n"
+    for i, (centre, radius, velocity, spin) in enumerate(disks):
+        text += (f"subsection Body {i}\n  set Shape = disk\n  set Center = {centre}\n"
+                 f"  set Radius = {radius}\n  set Velocity = {velocity}\n"
+                 f"  set Angular velocity = {spin}\n" + MATERIAL + "end\n")
+    return text
+
+
 SCENES = {
-    "ringing disk": ("""set Dimension = 2
-set Number of bodies = 1
-set Gravity = 0, 0
-subsection Time
-  set End time = 1
-end
-subsection Grid
-  set Lower corner = 0, 0
-  set Upper corner = 8, 1
-  set Subdivisions = 320, 40
-end
-subsection Body 0
-  set Shape = disk
-  set Center = 0.5, 0.5
-  set Radius = 0.1
-  set Velocity = 3.46, 0
-  set Angular velocity = 10
-""" + MATERIAL + "end\n"),
-    "flight": ("""set Dimension = 2
-set Number of bodies = 2
-set Gravity = 0, 0
-subsection Time
-  set End time = 0.8
-end
-subsection Grid
-  set Lower corner = -2, 0
-  set Upper corner = 6, 1
-  set Subdivisions = 320, 40
-end
-subsection Contact
-  set Model = bardenhagen 2001
-end
-subsection Body 0
-  set Shape = disk
-  set Center = 0.7, 0.5
-  set Radius = 0.2
-  set Velocity = 2, 0
-""" + MATERIAL + """end
-subsection Body 1
-  set Shape = disk
-  set Center = 1.2, 0.5
-  set Radius = 0.1
-  set Velocity = -2, 0
-""" + MATERIAL + "end\n"),
+    "ringing disk": scene(1, "0, 0", "8, 1", "320, 40", [("0.5, 0.5", 0.1, "3.46, 0", 10)]),
+    "flight": scene(0.8, "-2, 0", "6, 1", "320, 40",
+                    [("0.7, 0.5", 0.2, "2, 0", 0), ("1.2, 0.5", 0.1, "-2, 0", 0)],
+                    contact="bardenhagen 2001"),
 }
 # label, update scheme, CFL number
 VARIANTS = [("MUSL, CFL 0.5 (defaults)", "MUSL", 0.5),
