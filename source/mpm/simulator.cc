@@ -859,8 +859,8 @@ namespace sable::mpm
         pcout << "warning: the energy balance drifts by " << std::setprecision(3)
               << 100 * s.energy_drift << "% at step " << state.step_number << ", time "
               << state.time << " (statistics.csv, column energy_drift)" << std::setprecision(6);
-        // a gain without contact is most often a ringing body moving
-        // across the grid, which USAVG's midpoint rule keeps
+        // a gain is most often a body ringing while it moves across the
+        // grid, whose energy USAVG's midpoint rule keeps
         if (s.energy_drift > 0 && parameters.update_scheme != UpdateScheme::usavg)
           pcout << "; if bodies ring while they move or spin across the grid, "
                    "'Solver/Update scheme = USAVG' keeps their energy (doc/mpm.md, \"Stability\")";

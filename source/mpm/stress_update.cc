@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <mutex>
+#include <type_traits>
 
 namespace sable::mpm
 {
@@ -21,10 +22,11 @@ namespace sable::mpm
     constexpr unsigned int n_written = dim == 2 ? 4 : 6;
     Failure                failure;
     std::mutex             failure_mutex;
-    parallel::apply_to_subranges(
-      0u,
-      cells.n_owned(),
-      [&](const unsigned int begin, const unsigned int end) {
+    // the loop over the cells, compiled for each rule of F's update (the
+    // default's without a test per point)
+    const auto update_cells = [&](const unsigned int begin,
+                                  const unsigned int end,
+                                  const auto         midpoint) {
         Tensor<2, dim> identity;
         for (unsigned int d = 0; d < dim; ++d)
           identity[d][d] = 1.;
@@ -78,9 +80,10 @@ namespace sable::mpm
                   }
                 const Tensor<2, dim> &L = velocity_gradients[particle->get_local_index()];
                 Tensor<2, dim>        F = Layout::deformation_gradient(props);
-                F = midpoint_deformation ?
-                      invert(identity - 0.5 * dt * L) * (identity + 0.5 * dt * L) * F :
-                      (identity + dt * L) * F;
+                if constexpr (decltype(midpoint)::value)
+                  F = invert(identity - 0.5 * dt * L) * (identity + 0.5 * dt * L) * F;
+                else
+                  F = (identity + dt * L) * F;
                 for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Layout::deformation + i * dim + j] = F[i][j];
@@ -97,6 +100,15 @@ namespace sable::mpm
             if (!failure.failed || local.id < failure.id)
               failure = local;
           }
+    };
+    parallel::apply_to_subranges(
+      0u,
+      cells.n_owned(),
+      [&](const unsigned int begin, const unsigned int end) {
+        if (midpoint_deformation)
+          update_cells(begin, end, std::true_type());
+        else
+          update_cells(begin, end, std::false_type());
       },
       16);
     return failure;

@@ -374,8 +374,9 @@ namespace sable::mpm
     /// per locally owned particle (by local index): L = grad v of the
     /// strain update, from the grid-to-particle pass to the stress update
     std::vector<Tensor<2, dim>> velocity_gradients;
-    /// USAVG with contact: per owned cell with points, the time step of
-    /// its points' stress update in the current half of the step.
+    /// USAVG with contact or friction walls: per owned cell with points,
+    /// the time step of its points' stress update in the current half of
+    /// the step (0 in the first half where they take MUSL's whole step).
     std::vector<double> stress_time_steps;
     GridToParticle<dim>         grid_to_particle;
     /// the cells with material points, rebuilt at the start of a step
