@@ -61,6 +61,41 @@ namespace sable::mpm
   }
 
   template <int dim>
+  Tensor<1, dim>
+  GridToParticle<dim>::correction_at(const unsigned int                             node,
+                                     const typename MultiBodyContact<dim>::Record * record,
+                                     const double *                                 v_new,
+                                     const bool                                     momentum_update,
+                                     const double                                   time_step) const
+  {
+    // a moving wall's push is boundary work, counted where it is done
+    if (boundary != nullptr && !boundary->empty() && boundary->moving_wall_nodes()[node])
+      return {};
+    Tensor<1, dim> before;
+    if (record != nullptr)
+      {
+        if (record->mass <= 0.)
+          return {};
+        before = momentum_update ?
+                   Tensor<1, dim>(record->old_velocity +
+                                  time_step * (record->force / record->mass + correction_gravity)) :
+                   Tensor<1, dim>(record->momentum / record->mass);
+      }
+    else
+      {
+        const std::vector<double> &unconstrained = fields.get_unconstrained_velocity();
+        if (boundary == nullptr || unconstrained.empty() || !boundary->constrained_nodes()[node])
+          return {};
+        for (unsigned int d = 0; d < dim; ++d)
+          before[d] = unconstrained[node * dim + d];
+      }
+    Tensor<1, dim> change;
+    for (unsigned int d = 0; d < dim; ++d)
+      change[d] = v_new[d] - before[d];
+    return change;
+  }
+
+  template <int dim>
   template <bool update_positions, bool update_strain_rates, bool affine>
   typename GridToParticle<dim>::Report
   GridToParticle<dim>::transfer(Particles::ParticleHandler<dim> &particle_handler,
@@ -83,6 +118,10 @@ namespace sable::mpm
       grid.periodicity().any() ? &grid.periodicity() : nullptr;
     Report     report;
     std::mutex report_mutex;
+    if (measuring)
+      cell_correction_loss.assign(cells.n_owned(), 0.);
+    const std::vector<bool> *wall_nodes =
+      boundary != nullptr && !boundary->empty() ? &boundary->constrained_nodes() : nullptr;
     parallel::apply_to_subranges(
       0u,
       cells.n_owned(),
@@ -95,13 +134,30 @@ namespace sable::mpm
               continue;
             const auto &                        cell = cells[c];
             const typename Grid<dim>::CellData &data = *cell.data;
+            // the corrections' loss only where a node of the cell was
+            // corrected: a contact node or a wall's
+            bool measure_cell = false;
+            if (measuring)
+              {
+                const auto nodes = grid.cell_nodes(data);
+                measure_cell     = contact != nullptr && contact->touches(nodes);
+                for (unsigned int k = 0; k < nodes.second && wall_nodes != nullptr && !measure_cell;
+                     ++k)
+                  measure_cell = (*wall_nodes)[nodes.first[k]];
+              }
+            const double strain_time_step =
+              cell_time_steps != nullptr ? (*cell_time_steps)[c] : time_step;
+            double cell_loss = 0;
             for (auto &particle : cell.particles)
               {
                 const auto         props = particle.get_properties();
                 const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
                 const bool driven = drivers != nullptr && drivers->is_prescribed(body);
-                Tensor<1, dim> velocity_change, grid_velocity;
-                Tensor<2, dim> L;
+                Tensor<1, dim> velocity_change, grid_velocity, correction, velocity_before;
+                Tensor<2, dim> L, correction_gradient;
+                if (update_positions && measure_cell)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    velocity_before[d] = props[Layout::velocity + d];
                 if (driven)
                   {
                     // a rigid driver: its velocity, whatever the grid says
@@ -120,13 +176,23 @@ namespace sable::mpm
                     const double *     v_new = &new_velocity[node * dim];
                     const double *     v_old = &old_velocity[node * dim];
                     // each particle reads its own body's field
-                    if (contact != nullptr)
-                      if (const auto *record = contact->velocities(node, body))
-                        {
-                          v_new = &record->new_velocity[0];
-                          v_old = &record->old_velocity[0];
-                        }
+                    const auto *const record =
+                      contact != nullptr ? contact->velocities(node, body) : nullptr;
+                    if (record != nullptr)
+                      {
+                        v_new = &record->new_velocity[0];
+                        v_old = &record->old_velocity[0];
+                      }
                     const double N = shape.values[v];
+                    if (measure_cell)
+                      {
+                        const Tensor<1, dim> change =
+                          correction_at(node, record, v_new, update_positions, time_step);
+                        if constexpr (update_positions)
+                          correction += N * change;
+                        if constexpr (update_strain_rates)
+                          correction_gradient += outer_product(change, shape.gradients[v]);
+                      }
                     for (unsigned int d = 0; d < dim; ++d)
                       {
                         if constexpr (update_positions)
@@ -180,7 +246,19 @@ namespace sable::mpm
                       std::max(local.max_particle_speed, std::sqrt(speed2));
                     if (!std::isfinite(speed2))
                       local.fail(false, particle.get_id(), location);
+                    if (measure_cell && !driven)
+                      {
+                        Tensor<1, dim> mean_velocity;
+                        for (unsigned int d = 0; d < dim; ++d)
+                          mean_velocity[d] =
+                            0.5 * (velocity_before[d] + props[Layout::velocity + d]);
+                        cell_loss -= props[Layout::mass] * (correction * mean_velocity);
+                      }
                   }
+                if constexpr (update_strain_rates)
+                  if (measure_cell && !driven)
+                    cell_loss -= strain_time_step *
+                                 scalar_product(Layout::volume_stress(props), correction_gradient);
                 if constexpr (update_strain_rates)
                   {
                     velocity_gradients[particle.get_local_index()] = L;
@@ -190,11 +268,16 @@ namespace sable::mpm
                       layout.set_affine(props, L);
                   }
               }
+            if (measuring)
+              cell_correction_loss[c] = cell_loss;
           }
         std::lock_guard<std::mutex> lock(report_mutex);
         report.merge(local);
       },
       16);
+    if (measuring)
+      for (const double loss : cell_correction_loss)
+        report.correction_loss += loss;
     return report;
   }
 

@@ -108,6 +108,8 @@ namespace sable::mpm
       4096);
     if (boundary_conditions.empty())
       return 0.;
+    if (keep_unconstrained)
+      unconstrained_velocity = new_velocity;
     if constexpr (!momentum_update)
       {
         if constexpr (pass == GridPass::initial_momenta)

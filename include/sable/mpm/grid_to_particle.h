@@ -40,6 +40,10 @@ namespace sable::mpm
       double                max_particle_speed = 0;
       /// points whose new position is outside their cell (this rank)
       unsigned int          n_left_cell        = 0;
+      /// the kinetic and strain energy the contact's and the walls'
+      /// corrections took from the points in this pass, all ranks
+      /// (measure_corrections())
+      double                correction_loss    = 0;
       bool                  not_finite         = false;
       bool                  too_far            = false;
       types::particle_index failed_id          = numbers::invalid_unsigned_int;
@@ -67,6 +71,32 @@ namespace sable::mpm
     set_prescribed_velocities(const PrescribedVelocities<dim> *drivers)
     {
       prescribed = drivers;
+    }
+
+    /**
+     * Count what the corrections of the nodal velocities by the contact
+     * and by the walls that do no work (fixed, slip, friction) take from
+     * the points (Report::correction_loss), with @p gravity for the
+     * records' velocities before them. Where a node's velocity v was
+     * changed by dv, the points' velocities change by dv_p = sum N dv,
+     * and the loss is -m_p dv_p . (v_p before + v_p after)/2 in the
+     * momentum update; in the pass whose velocities drive the stress
+     * update, -dt V_p sigma_p : sum dv grad N, the strain energy the
+     * correction kept from being stored. Moving walls are left out (their
+     * work is boundary work), and so are scenes with prescribed-velocity
+     * bodies (their work on the others is already counted). Exact to first
+     * order in each correction: the pile's total agrees with the energy
+     * that leaves kinetic and strain energy to the time integration's
+     * error (doc/validation.md, "Energy balance of a settling pile").
+     */
+    void
+    measure_corrections(const bool                     measure,
+                        const Tensor<1, dim> &         gravity,
+                        const BoundaryConditions<dim> *walls)
+    {
+      measuring          = measure;
+      correction_gravity = gravity;
+      boundary           = walls;
     }
 
     /// With the affine transfers (@p layout stores C), computing the
@@ -98,11 +128,14 @@ namespace sable::mpm
     compute_strain_rates(Particles::ParticleHandler<dim> &particle_handler,
                          const ParticleCells<dim> &       cells,
                          const MultiBodyContact<dim> *    contact,
+                         const double                     strain_time_step,
                          const std::vector<double> *      cell_time_steps = nullptr) const
     {
       return layout.affine_stored ?
-               transfer<false, true, true>(particle_handler, cells, contact, 0., 0., cell_time_steps) :
-               transfer<false, true, false>(particle_handler, cells, contact, 0., 0., cell_time_steps);
+               transfer<false, true, true>(
+                 particle_handler, cells, contact, strain_time_step, 0., cell_time_steps) :
+               transfer<false, true, false>(
+                 particle_handler, cells, contact, strain_time_step, 0., cell_time_steps);
     }
 
     /// Both in one pass, from the same nodal velocities (USL).
@@ -130,6 +163,18 @@ namespace sable::mpm
                            const unsigned int               body,
                            const MultiBodyContact<dim> *    contact) const;
 
+    /// The velocity change dv the corrections made at @p node for a point
+    /// of a body whose velocity there is @p v_new (its record @p record at
+    /// a contact node, else the single field), in the momentum update
+    /// (@p momentum_update) or a pass of strain rates; zero where nothing
+    /// corrected it or its loss is not counted.
+    Tensor<1, dim>
+    correction_at(const unsigned int                              node,
+                  const typename MultiBodyContact<dim>::Record *  record,
+                  const double *                                  v_new,
+                  const bool                                      momentum_update,
+                  const double                                    time_step) const;
+
     /// @p affine: store each point's C = L (the affine transfers).
     template <bool update_positions, bool update_strain_rates, bool affine>
     Report
@@ -146,6 +191,12 @@ namespace sable::mpm
     std::vector<Tensor<2, dim>> &velocity_gradients;
     const PrescribedVelocities<dim> *prescribed = nullptr;
     ParticleLayout<dim>              layout;
+    bool                             measuring = false;
+    Tensor<1, dim>                   correction_gravity;
+    const BoundaryConditions<dim> *  boundary = nullptr;
+    /// per owned cell of the last pass: its points' correction loss, summed
+    /// in cell order so that threads do not change the total
+    mutable std::vector<double> cell_correction_loss;
   };
 } // namespace sable::mpm
 

@@ -112,6 +112,25 @@ namespace sable::mpm
       return new_velocity;
     }
 
+    /// Keep the velocities of each pass before the walls' conditions
+    /// (get_unconstrained_velocity()), for the loss their corrections
+    /// cause (GridToParticle::measure_corrections()).
+    void
+    keep_unconstrained_velocity(const bool keep)
+    {
+      keep_unconstrained = keep;
+      if (!keep)
+        unconstrained_velocity = std::vector<double>();
+    }
+
+    /// The last pass's velocities before the walls' conditions (empty
+    /// without walls or unless kept).
+    const std::vector<double> &
+    get_unconstrained_velocity() const
+    {
+      return unconstrained_velocity;
+    }
+
   private:
     NodalVector         scattered;
     NodalVector         material_extent;
@@ -119,6 +138,8 @@ namespace sable::mpm
     std::vector<double> mass;
     std::vector<double> old_velocity;
     std::vector<double> new_velocity;
+    bool                keep_unconstrained = false;
+    std::vector<double> unconstrained_velocity;
   };
 } // namespace sable::mpm
 

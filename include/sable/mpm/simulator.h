@@ -245,9 +245,10 @@ namespace sable::mpm
     /// ... with the walls' and the contact's conditions ...
     void
     update_remapped_velocities();
-    /// ... and the velocity gradients from them.
+    /// ... and the velocity gradients from them, for a stress update over
+    /// @p time_step (or per owned cell with points over @p cell_time_steps).
     void
-    compute_strain_rates();
+    compute_strain_rates(const double time_step, const std::vector<double> *cell_time_steps);
     /// F and stress of every point from its velocity gradient, over
     /// @p time_step (USAVG: half the step, twice), or per owned cell with
     /// points over @p cell_time_steps.
@@ -389,6 +390,9 @@ namespace sable::mpm
     /// whether a point left its cell in this step's move (sort_particles()
     /// sorts only then)
     bool points_left_cells = true;
+    /// whether the transfers count what the contact's and the walls'
+    /// corrections take from the points (RunState::correction_loss)
+    bool measure_corrections = false;
     /// on one rank: moves the points that left their cells in place of a
     /// sort; a full sort still runs once the moved points add up to
     /// full_sort_fraction of the points (it orders their data in memory)

@@ -66,11 +66,15 @@ namespace sable::mpm
                       constraints.end());
     constrained.assign(grid.n_relevant_nodes(), false);
     friction_constrained.assign(grid.n_relevant_nodes(), false);
+    moving_constrained.assign(grid.n_relevant_nodes(), false);
     for (const NodeConstraint &c : constraints)
       {
         constrained[c.node] = true;
-        if (parameters.find(c.id)->second.type == BoundaryType::friction)
+        const BoundaryType type = parameters.find(c.id)->second.type;
+        if (type == BoundaryType::friction)
           friction_constrained[c.node] = true;
+        if (type == BoundaryType::moving)
+          moving_constrained[c.node] = true;
       }
   }
 

@@ -43,6 +43,7 @@ namespace sable::mpm
     add("boundary_work", [](const Row &r) { return r.boundary_work; });
     add("plastic_work", [](const Row &r) { return r.statistics.plastic_work; });
     add("wall_heat", [](const Row &r) { return r.statistics.wall_heat; });
+    add("impact_loss", [](const Row &r) { return r.statistics.impact_loss; });
     add("energy_drift", [](const Row &r) { return r.statistics.energy_drift; });
     for (unsigned int d = 0; d < dim; ++d)
       add("momentum_" + axes.substr(d, 1), [d](const Row &r) { return r.statistics.momentum[d]; });

@@ -166,6 +166,14 @@ namespace sable::mpm
       return friction_constrained;
     }
 
+    /// Per relevant node: whether a moving wall acts there (setup()). Its
+    /// work is counted as boundary work, not as a loss of the impacts.
+    const std::vector<bool> &
+    moving_wall_nodes() const
+    {
+      return moving_constrained;
+    }
+
     /**
      * Apply the conditions to the velocities of USAVG's momenta at the
      * start of a step: those of the fixed, slip and moving walls. A
@@ -226,6 +234,8 @@ namespace sable::mpm
     std::vector<bool> constrained;
     /// per relevant node: whether a friction wall's constraint acts there
     std::vector<bool> friction_constrained;
+    /// per relevant node: whether a moving wall's constraint acts there
+    std::vector<bool> moving_constrained;
     /// per constraint: the tangential speed a friction wall left in the
     /// last apply(), -1 where it did not act
     std::vector<double> slip_left;

@@ -34,16 +34,22 @@ namespace sable::mpm
     double                      plastic_work = 0;
     /// friction heat of the walls so far (BoundaryConditions::frictional_heat)
     double                      wall_heat = 0;
+    /// kinetic and strain energy the corrections of contact and walls
+    /// took from the points so far beyond the contact and wall heat
+    /// (RunState::correction_loss less both heats): the normal impacts,
+    /// perfectly inelastic at each node, and sticking
+    double                      impact_loss = 0;
     /// impulse the bodies of prescribed velocity gave the others so far
     /// (RunState::driver_impulse)
     Tensor<1, dim>              driver_impulse;
     /**
      * The energy balance: kinetic + strain + gravitational energy + plastic
-     * work + wall and contact heat - boundary work, less its value at the
-     * start, over the energy the scene can hold (RunState::energy_scale(),
-     * at least the energy of all the mass over one cell height).
-     * What remains is the discretisation's own gain or loss: the transfers'
-     * (e.g. PIC's damping), the impacts on the grid nodes; NaN if not
+     * work + wall and contact heat + impact loss - boundary work, less its
+     * value at the start, over the energy the scene can hold
+     * (RunState::energy_scale(), at least the energy of all the mass over
+     * one cell height). What remains is the discretisation's own gain or
+     * loss: the time integration's, the transfers' (e.g. PIC's damping),
+     * and the impacts at moving walls and prescribed bodies; NaN if not
      * computed.
      */
     double                      energy_drift = std::numeric_limits<double>::quiet_NaN();
