@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <mutex>
+#include <type_traits>
 
 namespace sable::mpm
 {
@@ -61,38 +62,179 @@ namespace sable::mpm
   }
 
   template <int dim>
-  Tensor<1, dim>
-  GridToParticle<dim>::correction_at(const unsigned int                             node,
-                                     const typename MultiBodyContact<dim>::Record * record,
-                                     const double *                                 v_new,
-                                     const bool                                     momentum_update,
-                                     const double                                   time_step) const
+  template <bool update_positions, bool update_strain_rates, bool affine, bool measure>
+  DEAL_II_ALWAYS_INLINE inline double
+  GridToParticle<dim>::transfer_cell(const PassInput &                         input,
+                                     const typename ParticleCells<dim>::Cell &cell,
+                                     const double                              strain_time_step,
+                                     typename Grid<dim>::Shape &               shape,
+                                     Report &                                  local) const
   {
-    // a moving wall's push is boundary work, counted where it is done
-    if (boundary != nullptr && !boundary->empty() && boundary->moving_wall_nodes()[node])
-      return {};
-    Tensor<1, dim> before;
-    if (record != nullptr)
+    using Layout                               = ParticleLayout<dim>;
+    const typename Grid<dim>::CellData &data   = *cell.data;
+    const MultiBodyContact<dim> *const  contact = input.contact;
+    const auto *const                   drivers = input.drivers;
+    const double                        time_step = input.time_step;
+    const double                        alpha     = input.alpha;
+    const double *const                 new_velocity    = input.new_velocity;
+    const double *const                 old_velocity    = input.old_velocity;
+    const double *const                 wall_correction = input.wall_correction;
+    const Periodicity<dim> *const       periodicity     = input.periodicity;
+    double                              cell_loss = 0;
+    for (auto &particle : cell.particles)
       {
-        if (record->mass <= 0.)
-          return {};
-        before = momentum_update ?
-                   Tensor<1, dim>(record->old_velocity +
-                                  time_step * (record->force / record->mass + correction_gravity)) :
-                   Tensor<1, dim>(record->momentum / record->mass);
+        const auto         props = particle.get_properties();
+        const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
+        const bool driven = drivers != nullptr && drivers->is_prescribed(body);
+        Tensor<1, dim> velocity_change, grid_velocity, correction, velocity_before;
+        Tensor<2, dim> L, correction_gradient;
+        if constexpr (update_positions && measure)
+          for (unsigned int d = 0; d < dim; ++d)
+            velocity_before[d] = props[Layout::velocity + d];
+        if (driven)
+          {
+            // a rigid driver: its velocity, whatever the grid says
+            grid_velocity = drivers->velocity(body);
+            for (unsigned int d = 0; d < dim; ++d)
+              props[Layout::velocity + d] = grid_velocity[d];
+          }
+        else
+          grid.evaluate(data,
+                        particle.get_reference_location(),
+                        props[Layout::initial_volume],
+                        shape);
+        for (unsigned int v = 0; v < (driven ? 0 : shape.n_nodes); ++v)
+          {
+            const unsigned int node  = shape.nodes[v];
+            const double *     v_new = &new_velocity[node * dim];
+            const double *     v_old = &old_velocity[node * dim];
+            // each particle reads its own body's field
+            const auto *const record =
+              contact != nullptr ? contact->velocities(node, body) : nullptr;
+            if (record != nullptr)
+              {
+                v_new = &record->new_velocity[0];
+                v_old = &record->old_velocity[0];
+              }
+            const double N = shape.values[v];
+            if constexpr (measure)
+              {
+                // what the contact and the walls changed there
+                Tensor<1, dim> change;
+                if (record != nullptr)
+                  change = record->correction;
+                else if (wall_correction != nullptr)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    change[d] = wall_correction[node * dim + d];
+                if constexpr (update_positions)
+                  correction += N * change;
+                if constexpr (update_strain_rates)
+                  correction_gradient += outer_product(change, shape.gradients[v]);
+              }
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                if constexpr (update_positions)
+                  {
+                    velocity_change[d] += N * (v_new[d] - v_old[d]);
+                    grid_velocity[d] += N * v_new[d];
+                  }
+                if constexpr (update_strain_rates)
+                  for (unsigned int e = 0; e < dim; ++e)
+                    L[d][e] += v_new[d] * shape.gradients[v][e];
+              }
+          }
+        // with the affine transfers L becomes C, and a node of
+        // weight 0 without mass next to a point on its cell's face
+        // would carry its velocity 0 into the next transfer with
+        // full weight (a product of weights that underflows only
+        // costs a closer look)
+        if constexpr (update_strain_rates)
+          if (affine && !driven)
+            {
+              double weights = 1.;
+              for (unsigned int v = 0; v < shape.n_nodes; ++v)
+                weights *= shape.values[v];
+              if (weights == 0.)
+                L += massless_gradient_part(shape, body, contact);
+            }
+        if constexpr (update_positions)
+          {
+            double speed2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                double &v = props[Layout::velocity + d];
+                if (!driven)
+                  v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
+                speed2 += v * v;
+              }
+            // a particle may not cross more than one cell per step
+            const Tensor<1, dim> displacement = time_step * grid_velocity;
+            Point<dim>           location     = particle.get_location();
+            for (unsigned int d = 0; d < dim; ++d)
+              if (std::abs(displacement[d]) * data.inverse_h[d] > 1.)
+                local.fail(true, particle.get_id(), location);
+            location += displacement;
+            if (periodicity != nullptr)
+              periodicity->wrap(location);
+            particle.set_location(location);
+            local.n_left_cell += !cell.contains(location);
+            local.max_signal_speed =
+              std::max(local.max_signal_speed, std::sqrt(speed2) + body_wave_speed[body]);
+            local.max_particle_speed =
+              std::max(local.max_particle_speed, std::sqrt(speed2));
+            if (!std::isfinite(speed2))
+              local.fail(false, particle.get_id(), location);
+            if (measure && !driven)
+              {
+                Tensor<1, dim> mean_velocity;
+                for (unsigned int d = 0; d < dim; ++d)
+                  mean_velocity[d] =
+                    0.5 * (velocity_before[d] + props[Layout::velocity + d]);
+                cell_loss -= props[Layout::mass] * (correction * mean_velocity);
+              }
+          }
+        if constexpr (update_strain_rates)
+          if (measure && !driven)
+            cell_loss -= strain_time_step *
+                         scalar_product(Layout::volume_stress(props), correction_gradient);
+        if constexpr (update_strain_rates)
+          {
+            velocity_gradients[particle.get_local_index()] = L;
+            // the affine transfers carry the velocity gradient
+            // of the stress update into the next step as C
+            if constexpr (affine)
+              layout.set_affine(props, L);
+          }
       }
-    else
-      {
-        const std::vector<double> &unconstrained = fields.get_unconstrained_velocity();
-        if (boundary == nullptr || unconstrained.empty() || !boundary->constrained_nodes()[node])
-          return {};
-        for (unsigned int d = 0; d < dim; ++d)
-          before[d] = unconstrained[node * dim + d];
-      }
-    Tensor<1, dim> change;
-    for (unsigned int d = 0; d < dim; ++d)
-      change[d] = v_new[d] - before[d];
-    return change;
+    return cell_loss;
+  }
+
+  template <int dim>
+  void
+  GridToParticle<dim>::find_corrected_cells(const ParticleCells<dim> &   cells,
+                                            const MultiBodyContact<dim> *contact)
+  {
+    corrected_cells.assign(cells.n_owned(), 0);
+    if (!measuring)
+      return;
+    const unsigned char *const wall_nodes = boundary != nullptr && !boundary->empty() ?
+                                              boundary->constrained_node_bytes().data() :
+                                              nullptr;
+    parallel::apply_to_subranges(
+      0u,
+      cells.n_owned(),
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int c = begin; c < end; ++c)
+          {
+            const auto    nodes   = grid.cell_nodes(*cells[c].data);
+            unsigned char at_wall = 0;
+            if (wall_nodes != nullptr)
+              for (unsigned int k = 0; k < nodes.second; ++k)
+                at_wall |= wall_nodes[nodes.first[k]];
+            corrected_cells[c] = at_wall != 0 || (contact != nullptr && contact->touches(nodes));
+          }
+      },
+      256);
   }
 
   template <int dim>
@@ -105,7 +247,6 @@ namespace sable::mpm
                                 const double                     alpha,
                                 const std::vector<double> *      cell_time_steps) const
   {
-    using Layout = ParticleLayout<dim>;
     if (update_strain_rates)
       velocity_gradients.resize(particle_handler.get_max_local_particle_index());
     const std::vector<double> &new_velocity = fields.get_new_velocity();
@@ -120,8 +261,18 @@ namespace sable::mpm
     std::mutex report_mutex;
     if (measuring)
       cell_correction_loss.assign(cells.n_owned(), 0.);
-    const std::vector<bool> *wall_nodes =
-      boundary != nullptr && !boundary->empty() ? &boundary->constrained_nodes() : nullptr;
+    Assert(!measuring || corrected_cells.size() == cells.n_owned(),
+           ExcMessage("find_corrected_cells() must run after the cells change"));
+    const PassInput input{contact,
+                          drivers,
+                          periodicity,
+                          new_velocity.data(),
+                          old_velocity.data(),
+                          fields.get_wall_correction().empty() ?
+                            nullptr :
+                            fields.get_wall_correction().data(),
+                          time_step,
+                          alpha};
     parallel::apply_to_subranges(
       0u,
       cells.n_owned(),
@@ -132,143 +283,17 @@ namespace sable::mpm
           {
             if (cell_time_steps != nullptr && (*cell_time_steps)[c] == 0.)
               continue;
-            const auto &                        cell = cells[c];
-            const typename Grid<dim>::CellData &data = *cell.data;
-            // the corrections' loss only where a node of the cell was
-            // corrected: a contact node or a wall's
-            bool measure_cell = false;
-            if (measuring)
-              {
-                const auto nodes = grid.cell_nodes(data);
-                measure_cell     = contact != nullptr && contact->touches(nodes);
-                for (unsigned int k = 0; k < nodes.second && wall_nodes != nullptr && !measure_cell;
-                     ++k)
-                  measure_cell = (*wall_nodes)[nodes.first[k]];
-              }
+            const auto &cell         = cells[c];
+            const bool  measure_cell = measuring && corrected_cells[c] != 0;
             const double strain_time_step =
               cell_time_steps != nullptr ? (*cell_time_steps)[c] : time_step;
-            double cell_loss = 0;
-            for (auto &particle : cell.particles)
-              {
-                const auto         props = particle.get_properties();
-                const unsigned int body  = static_cast<unsigned int>(props[Layout::body]);
-                const bool driven = drivers != nullptr && drivers->is_prescribed(body);
-                Tensor<1, dim> velocity_change, grid_velocity, correction, velocity_before;
-                Tensor<2, dim> L, correction_gradient;
-                if (update_positions && measure_cell)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    velocity_before[d] = props[Layout::velocity + d];
-                if (driven)
-                  {
-                    // a rigid driver: its velocity, whatever the grid says
-                    grid_velocity = drivers->velocity(body);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      props[Layout::velocity + d] = grid_velocity[d];
-                  }
-                else
-                  grid.evaluate(data,
-                                particle.get_reference_location(),
-                                props[Layout::initial_volume],
-                                shape);
-                for (unsigned int v = 0; v < (driven ? 0 : shape.n_nodes); ++v)
-                  {
-                    const unsigned int node  = shape.nodes[v];
-                    const double *     v_new = &new_velocity[node * dim];
-                    const double *     v_old = &old_velocity[node * dim];
-                    // each particle reads its own body's field
-                    const auto *const record =
-                      contact != nullptr ? contact->velocities(node, body) : nullptr;
-                    if (record != nullptr)
-                      {
-                        v_new = &record->new_velocity[0];
-                        v_old = &record->old_velocity[0];
-                      }
-                    const double N = shape.values[v];
-                    if (measure_cell)
-                      {
-                        const Tensor<1, dim> change =
-                          correction_at(node, record, v_new, update_positions, time_step);
-                        if constexpr (update_positions)
-                          correction += N * change;
-                        if constexpr (update_strain_rates)
-                          correction_gradient += outer_product(change, shape.gradients[v]);
-                      }
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        if constexpr (update_positions)
-                          {
-                            velocity_change[d] += N * (v_new[d] - v_old[d]);
-                            grid_velocity[d] += N * v_new[d];
-                          }
-                        if constexpr (update_strain_rates)
-                          for (unsigned int e = 0; e < dim; ++e)
-                            L[d][e] += v_new[d] * shape.gradients[v][e];
-                      }
-                  }
-                // with the affine transfers L becomes C, and a node of
-                // weight 0 without mass next to a point on its cell's face
-                // would carry its velocity 0 into the next transfer with
-                // full weight (a product of weights that underflows only
-                // costs a closer look)
-                if constexpr (update_strain_rates)
-                  if (affine && !driven)
-                    {
-                      double weights = 1.;
-                      for (unsigned int v = 0; v < shape.n_nodes; ++v)
-                        weights *= shape.values[v];
-                      if (weights == 0.)
-                        L += massless_gradient_part(shape, body, contact);
-                    }
-                if constexpr (update_positions)
-                  {
-                    double speed2 = 0;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        double &v = props[Layout::velocity + d];
-                        if (!driven)
-                          v = (1. - alpha) * (v + velocity_change[d]) + alpha * grid_velocity[d];
-                        speed2 += v * v;
-                      }
-                    // a particle may not cross more than one cell per step
-                    const Tensor<1, dim> displacement = time_step * grid_velocity;
-                    Point<dim>           location     = particle.get_location();
-                    for (unsigned int d = 0; d < dim; ++d)
-                      if (std::abs(displacement[d]) * data.inverse_h[d] > 1.)
-                        local.fail(true, particle.get_id(), location);
-                    location += displacement;
-                    if (periodicity != nullptr)
-                      periodicity->wrap(location);
-                    particle.set_location(location);
-                    local.n_left_cell += !cell.contains(location);
-                    local.max_signal_speed =
-                      std::max(local.max_signal_speed, std::sqrt(speed2) + body_wave_speed[body]);
-                    local.max_particle_speed =
-                      std::max(local.max_particle_speed, std::sqrt(speed2));
-                    if (!std::isfinite(speed2))
-                      local.fail(false, particle.get_id(), location);
-                    if (measure_cell && !driven)
-                      {
-                        Tensor<1, dim> mean_velocity;
-                        for (unsigned int d = 0; d < dim; ++d)
-                          mean_velocity[d] =
-                            0.5 * (velocity_before[d] + props[Layout::velocity + d]);
-                        cell_loss -= props[Layout::mass] * (correction * mean_velocity);
-                      }
-                  }
-                if constexpr (update_strain_rates)
-                  if (measure_cell && !driven)
-                    cell_loss -= strain_time_step *
-                                 scalar_product(Layout::volume_stress(props), correction_gradient);
-                if constexpr (update_strain_rates)
-                  {
-                    velocity_gradients[particle.get_local_index()] = L;
-                    // the affine transfers carry the velocity gradient
-                    // of the stress update into the next step as C
-                    if constexpr (affine)
-                      layout.set_affine(props, L);
-                  }
-              }
-            if (measuring)
+            const double cell_loss =
+              measure_cell ?
+                transfer_cell<update_positions, update_strain_rates, affine, true>(
+                  input, cell, strain_time_step, shape, local) :
+                transfer_cell<update_positions, update_strain_rates, affine, false>(
+                  input, cell, strain_time_step, shape, local);
+            if (measure_cell)
               cell_correction_loss[c] = cell_loss;
           }
         std::lock_guard<std::mutex> lock(report_mutex);

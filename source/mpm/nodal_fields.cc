@@ -108,8 +108,21 @@ namespace sable::mpm
       4096);
     if (boundary_conditions.empty())
       return 0.;
-    if (keep_unconstrained)
-      unconstrained_velocity = new_velocity;
+    // the walls' nodes' velocities before the conditions; every other
+    // entry of wall_correction stays zero until the walls' nodes change
+    const std::vector<unsigned int> &wall_nodes = boundary_conditions.constrained_node_list();
+    if (keep_wall_correction)
+      {
+        if (wall_correction.size() != new_velocity.size() || wall_correction_nodes != wall_nodes)
+          {
+            wall_correction.assign(new_velocity.size(), 0.);
+            wall_correction_nodes = wall_nodes;
+          }
+        for (const unsigned int i : wall_nodes)
+          for (unsigned int d = 0; d < dim; ++d)
+            wall_correction[i * dim + d] = new_velocity[i * dim + d];
+      }
+    double work = 0.;
     if constexpr (!momentum_update)
       {
         if constexpr (pass == GridPass::initial_momenta)
@@ -119,7 +132,6 @@ namespace sable::mpm
             boundary_conditions.count_heat_on_remapped(new_velocity, mass, n_owned_nodes());
             boundary_conditions.apply_to_remapped(new_velocity, mass);
           }
-        return 0.;
       }
     else
       {
@@ -127,8 +139,17 @@ namespace sable::mpm
           boundary_conditions.set_material_extent(material_extent.get_values(), time_step);
         if (mass_moment.size() > 0)
           boundary_conditions.set_mass_moment(mass_moment.get_values(), time_step);
-        return boundary_conditions.apply(new_velocity, mass, n_owned_nodes());
+        work = boundary_conditions.apply(new_velocity, mass, n_owned_nodes());
       }
+    if (keep_wall_correction)
+      {
+        const std::vector<bool> &moving = boundary_conditions.moving_wall_nodes();
+        for (const unsigned int i : wall_nodes)
+          for (unsigned int d = 0; d < dim; ++d)
+            wall_correction[i * dim + d] =
+              moving[i] ? 0. : new_velocity[i * dim + d] - wall_correction[i * dim + d];
+      }
+    return work;
   }
 
   template class NodalFields<2>;

@@ -175,10 +175,8 @@ namespace sable::mpm
     prescribed_velocities = PrescribedVelocities<dim>(parameters.bodies);
     measure_corrections = !prescribed_velocities.any() &&
                           (contact != nullptr || !parameters.boundaries.empty());
-    grid_to_particle.measure_corrections(measure_corrections,
-                                         parameters.gravity,
-                                         &boundary_conditions);
-    nodal_fields.keep_unconstrained_velocity(measure_corrections);
+    grid_to_particle.measure_corrections(measure_corrections, &boundary_conditions);
+    nodal_fields.keep_wall_corrections(measure_corrections);
     if (prescribed_velocities.any())
       {
         check_input(contact != nullptr || parameters.bodies.size() == 1,
@@ -471,13 +469,17 @@ namespace sable::mpm
         state.boundary_work += Utilities::MPI::sum(work, communicator);
       }
     // unless the particle container is as the last step left it
-    if (!particle_cells_current)
+    const bool cells_rebuilt = !particle_cells_current;
+    if (cells_rebuilt)
       {
         TimerOutput::Scope scope(timer, "list cells with points");
         particle_cells.rebuild(*particle_handler, grid, particle_to_grid.get_colouring());
       }
     particle_cells_current = false;
     find_contact_nodes();
+    // the walls' nodes stay; the contact nodes change every step
+    if (measure_corrections && (cells_rebuilt || contact))
+      grid_to_particle.find_corrected_cells(particle_cells, contact.get());
     const bool usavg = parameters.update_scheme == UpdateScheme::usavg;
     if (usavg)
       update_stresses_from_initial_momenta();

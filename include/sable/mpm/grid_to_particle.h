@@ -76,8 +76,9 @@ namespace sable::mpm
     /**
      * Count what the corrections of the nodal velocities by the contact
      * and by the walls that do no work (fixed, slip, friction) take from
-     * the points (Report::correction_loss), with @p gravity for the
-     * records' velocities before them. Where a node's velocity v was
+     * the points (Report::correction_loss): the records' corrections
+     * (BodyFields::Record::correction) and the walls' on the single field
+     * (NodalFields::get_wall_correction()). Where a node's velocity v was
      * changed by dv, the points' velocities change by dv_p = sum N dv,
      * and the loss is -m_p dv_p . (v_p before + v_p after)/2 in the
      * momentum update; in the pass whose velocities drive the stress
@@ -90,14 +91,19 @@ namespace sable::mpm
      * error (doc/validation.md, "Energy balance of a settling pile").
      */
     void
-    measure_corrections(const bool                     measure,
-                        const Tensor<1, dim> &         gravity,
-                        const BoundaryConditions<dim> *walls)
+    measure_corrections(const bool measure, const BoundaryConditions<dim> *walls)
     {
-      measuring          = measure;
-      correction_gravity = gravity;
-      boundary           = walls;
+      measuring = measure;
+      boundary  = walls;
     }
+
+    /// With measure_corrections(): mark the owned cells with points whose
+    /// shape functions reach a node that the contact or a wall may
+    /// correct in this step (a contact node of @p contact, a wall's node),
+    /// where the transfers count the loss. After the contact nodes are
+    /// found, and whenever the cells change.
+    void
+    find_corrected_cells(const ParticleCells<dim> &cells, const MultiBodyContact<dim> *contact);
 
     /// With the affine transfers (@p layout stores C), computing the
     /// strain rates also stores each point's C = L, the velocity gradient
@@ -163,17 +169,30 @@ namespace sable::mpm
                            const unsigned int               body,
                            const MultiBodyContact<dim> *    contact) const;
 
-    /// The velocity change dv the corrections made at @p node for a point
-    /// of a body whose velocity there is @p v_new (its record @p record at
-    /// a contact node, else the single field), in the momentum update
-    /// (@p momentum_update) or a pass of strain rates; zero where nothing
-    /// corrected it or its loss is not counted.
-    Tensor<1, dim>
-    correction_at(const unsigned int                              node,
-                  const typename MultiBodyContact<dim>::Record *  record,
-                  const double *                                  v_new,
-                  const bool                                      momentum_update,
-                  const double                                    time_step) const;
+    /// What every cell of one pass reads.
+    struct PassInput
+    {
+      const MultiBodyContact<dim> *    contact;
+      const PrescribedVelocities<dim> *drivers;
+      const Periodicity<dim> *         periodicity;
+      const double *                   new_velocity;
+      const double *                   old_velocity;
+      /// NodalFields::get_wall_correction(), nullptr if empty
+      const double *wall_correction;
+      double        time_step;
+      double        alpha;
+    };
+
+    /// One cell's points in a pass of transfer(); with @p measure, returns
+    /// the loss the corrections caused there (measure_corrections()), its
+    /// strain part over @p strain_time_step.
+    template <bool update_positions, bool update_strain_rates, bool affine, bool measure>
+    double
+    transfer_cell(const PassInput &                         input,
+                  const typename ParticleCells<dim>::Cell &cell,
+                  const double                              strain_time_step,
+                  typename Grid<dim>::Shape &               shape,
+                  Report &                                  local) const;
 
     /// @p affine: store each point's C = L (the affine transfers).
     template <bool update_positions, bool update_strain_rates, bool affine>
@@ -192,11 +211,13 @@ namespace sable::mpm
     const PrescribedVelocities<dim> *prescribed = nullptr;
     ParticleLayout<dim>              layout;
     bool                             measuring = false;
-    Tensor<1, dim>                   correction_gravity;
     const BoundaryConditions<dim> *  boundary = nullptr;
     /// per owned cell of the last pass: its points' correction loss, summed
     /// in cell order so that threads do not change the total
     mutable std::vector<double> cell_correction_loss;
+    /// per owned cell with points: whether the transfers count the loss
+    /// there (find_corrected_cells())
+    std::vector<unsigned char> corrected_cells;
   };
 } // namespace sable::mpm
 

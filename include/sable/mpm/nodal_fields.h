@@ -112,23 +112,28 @@ namespace sable::mpm
       return new_velocity;
     }
 
-    /// Keep the velocities of each pass before the walls' conditions
-    /// (get_unconstrained_velocity()), for the loss their corrections
-    /// cause (GridToParticle::measure_corrections()).
+    /// Keep what the walls' conditions change in each pass's velocities
+    /// (get_wall_correction()), for the loss of their impacts
+    /// (GridToParticle::measure_corrections()).
     void
-    keep_unconstrained_velocity(const bool keep)
+    keep_wall_corrections(const bool keep)
     {
-      keep_unconstrained = keep;
+      keep_wall_correction = keep;
       if (!keep)
-        unconstrained_velocity = std::vector<double>();
+        {
+          wall_correction       = std::vector<double>();
+          wall_correction_nodes = std::vector<unsigned int>();
+        }
     }
 
-    /// The last pass's velocities before the walls' conditions (empty
-    /// without walls or unless kept).
+    /// What the walls' conditions changed in the last pass's velocities,
+    /// dim values per node: zero where no wall acts and at a moving wall's
+    /// nodes (its work is boundary work); empty without walls or unless
+    /// kept.
     const std::vector<double> &
-    get_unconstrained_velocity() const
+    get_wall_correction() const
     {
-      return unconstrained_velocity;
+      return wall_correction;
     }
 
   private:
@@ -138,8 +143,9 @@ namespace sable::mpm
     std::vector<double> mass;
     std::vector<double> old_velocity;
     std::vector<double> new_velocity;
-    bool                keep_unconstrained = false;
-    std::vector<double> unconstrained_velocity;
+    bool                      keep_wall_correction = false;
+    std::vector<double>       wall_correction;
+    std::vector<unsigned int> wall_correction_nodes;
   };
 } // namespace sable::mpm
 

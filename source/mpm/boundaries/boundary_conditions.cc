@@ -76,6 +76,16 @@ namespace sable::mpm
         if (type == BoundaryType::moving)
           moving_constrained[c.node] = true;
       }
+    constrained_list.clear();
+    constrained_bytes.assign(grid.n_relevant_nodes(), 0);
+    for (const NodeConstraint &c : constraints)
+      {
+        constrained_list.push_back(c.node);
+        constrained_bytes[c.node] = 1;
+      }
+    std::sort(constrained_list.begin(), constrained_list.end());
+    constrained_list.erase(std::unique(constrained_list.begin(), constrained_list.end()),
+                           constrained_list.end());
   }
 
   template <int dim>

@@ -409,6 +409,8 @@ namespace sable::mpm
                   }
                 else
                   r->new_velocity = velocity;
+                // the velocity before the corrections, until the end
+                r->correction = r->new_velocity;
               }
           }
       },
@@ -451,6 +453,31 @@ namespace sable::mpm
       hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())
       boundary_conditions.apply_to_bodies(fields, !momentum_update, n_owned_nodes);
+    keep_corrections(boundary_conditions);
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::keep_corrections(const BoundaryConditions<dim> &boundary_conditions)
+  {
+    const std::vector<unsigned int> &contact_nodes = fields.get_contact_nodes();
+    const std::vector<bool> *        moving =
+      boundary_conditions.empty() ? nullptr : &boundary_conditions.moving_wall_nodes();
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(contact_nodes.size()),
+      [&](const unsigned int first, const unsigned int last) {
+        for (unsigned int i = first; i < last; ++i)
+          {
+            const bool at_moving_wall = moving != nullptr && (*moving)[contact_nodes[i]];
+            const auto [begin, end]   = fields.node_records(contact_nodes[i]);
+            for (Record *r = begin; r != end; ++r)
+              r->correction = r->mass <= 0. || at_moving_wall ?
+                                Tensor<1, dim>() :
+                                Tensor<1, dim>(r->new_velocity - r->correction);
+          }
+      },
+      256);
   }
 
   template <int dim>

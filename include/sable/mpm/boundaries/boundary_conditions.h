@@ -166,6 +166,22 @@ namespace sable::mpm
       return friction_constrained;
     }
 
+    /// constrained_nodes() as one byte per node (1 where a wall acts), for
+    /// tests of many nodes at once without branches.
+    const std::vector<unsigned char> &
+    constrained_node_bytes() const
+    {
+      return constrained_bytes;
+    }
+
+    /// The relevant nodes where a wall's condition acts, in order, once each
+    /// (setup()).
+    const std::vector<unsigned int> &
+    constrained_node_list() const
+    {
+      return constrained_list;
+    }
+
     /// Per relevant node: whether a moving wall acts there (setup()). Its
     /// work is counted as boundary work, not as a loss of the impacts.
     const std::vector<bool> &
@@ -236,6 +252,10 @@ namespace sable::mpm
     std::vector<bool> friction_constrained;
     /// per relevant node: whether a moving wall's constraint acts there
     std::vector<bool> moving_constrained;
+    /// the nodes of constrained, in order
+    std::vector<unsigned int> constrained_list;
+    /// constrained, one byte per node
+    std::vector<unsigned char> constrained_bytes;
     /// per constraint: the tangential speed a friction wall left in the
     /// last apply(), -1 where it did not act
     std::vector<double> slip_left;

@@ -58,6 +58,10 @@ namespace sable::mpm
       double mass_on_surface;
       Tensor<1, dim>          old_velocity;
       Tensor<1, dim>          new_velocity;
+      /// what the contact and the walls changed in new_velocity in the last
+      /// pass (zero at a moving wall's node, whose work is boundary work),
+      /// for the loss of the impacts (GridToParticle::measure_corrections())
+      Tensor<1, dim> correction;
       /// set by the contact pass after the momentum update, for output:
       /// the body's normal, the contact force on it, and its state
       /// (0 free, 1 stick, 2 slip)

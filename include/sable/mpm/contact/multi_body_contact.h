@@ -280,6 +280,12 @@ namespace sable::mpm
     void
     hold_drivers(const bool before, const bool record_work, const unsigned int n_owned_nodes);
 
+    /// Each record's correction: its velocity after the contact and the
+    /// walls less the one correct_velocities() started from (which the
+    /// field holds until then); zero at a moving wall's node.
+    void
+    keep_corrections(const BoundaryConditions<dim> &boundary_conditions);
+
     /// In the remapped pass, before any correction: add each owned record's
     /// -dt F_t . v to the contact's heat (F_t: the friction part of its
     /// contact force) and -m dv_t . v to the walls' (dv_t: the friction
