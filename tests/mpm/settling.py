@@ -57,6 +57,9 @@ for material in ("neo-Hookean", "linear elastic"):
     speed = max(abs(r["body0_vy"]) for r in settled)
     check(f"{material}: unsettled, the disk drops (it must, for the test to mean anything)",
           drop_speed > 0.05, f"max |v_y| {drop_speed:.3g} m/s")
+    check(f"{material}: settled, the run's energy counts start at zero (the settling steps' are dropped)",
+          settled[0]["impact_loss"] == 0 and settled[0]["wall_heat"] == 0,
+          f"impact_loss {settled[0]['impact_loss']:.3g} J, wall_heat {settled[0]['wall_heat']:.3g} J at step 0")
     check(f"{material}: settled, max |v_y| below 1e-3 of the unsettled one", speed < 1e-3 * drop_speed,
           f"{speed:.3g} m/s against {drop_speed:.3g}")
     moved = max(abs(r["body0_y"] - settled[0]["body0_y"]) for r in settled)
