@@ -307,10 +307,10 @@ namespace sable::mpm
                       "Stop the run when the energy balance (the column "
                       "energy_drift of statistics.csv: kinetic + strain + "
                       "gravitational energy + plastic work + wall and contact "
-                      "friction heat - boundary work, change since the start over "
-                      "the energy the scene can hold) gains more than this "
-                      "fraction, > 0. A loss (inelastic impacts on the grid, "
-                      "material leaving it) does not stop the run. A warning is "
+                      "friction heat + the impacts' loss - boundary work, change "
+                      "since the start over the energy the scene can hold) gains "
+                      "more than this fraction, > 0. A loss (PIC's damping, "
+                      "material leaving the grid) does not stop the run. A warning is "
                       "printed once the drift either way exceeds 0.01 (or this "
                       "limit if smaller).");
     prm.declare_entry("Allow outflow",
