@@ -48,7 +48,8 @@ namespace sable::mpm
     template <int dim>
     struct SavedState
     {
-      /// 10: the points' vectors to their face (with face normals); 9: the
+      /// 11: the corrections' loss (impact_loss); 10: the points' vectors
+      /// to their face (with face normals); 9: the
       /// contact pairs' pulling impulses; 8: the reported pairs'
       /// moments; 7: whether the last step's
       /// statistics row is due; 6: the scene's
@@ -56,7 +57,7 @@ namespace sable::mpm
       /// state as one RunState, the contact nodes as an output series;
       /// 3: the grid's base level and the grid output series; 1 and 2 have
       /// a coarse mesh of every subdivision cell)
-      static constexpr unsigned int current_format = 10;
+      static constexpr unsigned int current_format = 11;
       unsigned int          format         = current_format;
       unsigned int          dimension      = dim;
       unsigned int          n_bodies       = 0;
@@ -68,6 +69,7 @@ namespace sable::mpm
       unsigned long long    n_particles  = 0;
       RunState              run;
       double                wall_heat        = 0;
+      double                correction_loss  = 0;
       bool                  with_contact            = false;
       double                frictional_heat         = 0;
       double                momentum_defect         = 0;
@@ -92,7 +94,7 @@ namespace sable::mpm
         if (format != current_format)
           return;
         ar &dimension &n_bodies &n_properties &n_coarse_cells &n_ranks &base_level &grid_box;
-        ar &n_particles &run &wall_heat;
+        ar &n_particles &run &wall_heat &correction_loss;
         ar &with_contact &frictional_heat &momentum_defect &momentum_correction;
         ar &pair_forces &pair_moments &pulling_impulses;
         ar &particle_files &contact_node_files &contact_node_xdmf_entries &xdmf_entries;
@@ -195,6 +197,7 @@ namespace sable::mpm
     state.n_particles             = particle_handler->n_global_particles();
     state.run                     = this->state;
     state.wall_heat = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
+    state.correction_loss = Utilities::MPI::sum(correction_loss, communicator);
     state.scene_entries           = parameters.scene_entries;
     state.particle_files          = particle_series.files;
     state.contact_node_files        = contact_node_series.files;
@@ -347,6 +350,7 @@ namespace sable::mpm
     this->state                  = state.run;
     // the sums over ranks continue on rank 0
     boundary_conditions.frictional_heat = root ? state.wall_heat : 0.;
+    correction_loss                     = root ? state.correction_loss : 0.;
     particle_series.files        = state.particle_files;
     contact_node_series.files        = state.contact_node_files;
     contact_node_series.xdmf_entries = state.contact_node_xdmf_entries;

@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <mutex>
-#include <type_traits>
 
 namespace sable::mpm
 {

@@ -26,6 +26,9 @@ namespace sable::mpm
     mass.assign(grid.n_relevant_nodes(), 0.);
     old_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
     new_velocity.assign(grid.n_relevant_nodes() * dim, 0.);
+    // nonzero only at the walls' nodes, which change only with the grid
+    if (keep_wall_correction)
+      wall_correction.assign(grid.n_relevant_nodes() * dim, 0.);
   }
 
   template <int dim>
@@ -109,15 +112,12 @@ namespace sable::mpm
     if (boundary_conditions.empty())
       return 0.;
     // the walls' nodes' velocities before the conditions; every other
-    // entry of wall_correction stays zero until the walls' nodes change
+    // entry of wall_correction stays zero (reinit())
     const std::vector<unsigned int> &wall_nodes = boundary_conditions.constrained_node_list();
     if (keep_wall_correction)
       {
-        if (wall_correction.size() != new_velocity.size() || wall_correction_nodes != wall_nodes)
-          {
-            wall_correction.assign(new_velocity.size(), 0.);
-            wall_correction_nodes = wall_nodes;
-          }
+        if (wall_correction.size() != new_velocity.size())
+          wall_correction.assign(new_velocity.size(), 0.);
         for (const unsigned int i : wall_nodes)
           for (unsigned int d = 0; d < dim; ++d)
             wall_correction[i * dim + d] = new_velocity[i * dim + d];

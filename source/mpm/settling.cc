@@ -146,9 +146,9 @@ namespace sable::mpm
     state.time             = 0;
     state.step_number      = 0;
     state.boundary_work    = 0;
-    state.correction_loss  = 0;
     state.driver_impulse   = {{0, 0, 0}};
     boundary_conditions.frictional_heat = 0;
+    correction_loss                     = 0;
     if (contact)
       {
         auto &model               = contact->get_model();

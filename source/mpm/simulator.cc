@@ -724,8 +724,7 @@ namespace sable::mpm
   Simulator<dim>::process_report(const typename GridToParticle<dim>::Report &report,
                                  const bool                                  moved)
   {
-    if (measure_corrections)
-      state.correction_loss += Utilities::MPI::sum(report.correction_loss, communicator);
+    correction_loss += report.correction_loss;
     // only the pass that moves the points measures speeds (every rank
     // takes part in the reductions, also one without points)
     if (moved)
@@ -782,7 +781,8 @@ namespace sable::mpm
                                                        state.time_step);
     s.wall_heat    = Utilities::MPI::sum(boundary_conditions.frictional_heat, communicator);
     if (measure_corrections)
-      s.impact_loss = state.correction_loss - s.wall_heat - s.contact_heat;
+      s.impact_loss =
+        Utilities::MPI::sum(correction_loss, communicator) - s.wall_heat - s.contact_heat;
     for (unsigned int d = 0; d < dim; ++d)
       s.driver_impulse[d] = state.driver_impulse[d];
     s.energy_drift     = energy_drift(s);

@@ -199,10 +199,10 @@ state = os.path.join(out, "checkpoint", "simulator.state")
 with open(state) as f:
     text = f.read()
 match = re.match(r"(\d+ serialization::archive \d+ \d+ \d+ )(\d+)", text)
-check("the state archive starts with the format 10", match is not None and match.group(2) == "10", text[:60])
+check("the state archive starts with the format 11", match is not None and match.group(2) == "11", text[:60])
 if match:
     with open(state, "w") as f:
-        f.write(match.group(1) + "9" + text[match.end():])
+        f.write(match.group(1) + "10" + text[match.end():])
     # the manifest with the new size and checksum: a complete checkpoint
     manifest = os.path.join(out, "checkpoint", "manifest")
     with open(manifest) as f:
@@ -214,8 +214,8 @@ if match:
     with open(manifest, "w") as f:
         f.write("\n".join(lines) + "\n")
     code, output = sable(directory, ["scene.prm", "--resume", "--set", "Time/Maximum number of steps=40"])
-    check("a checkpoint of format 9: refused, saying it is an older format",
-          code != 0 and "format is 9" in output and "earlier version of sable" in output, last_line(output))
+    check("a checkpoint of format 10: refused, saying it is an older format",
+          code != 0 and "format is 10" in output and "earlier version of sable" in output, last_line(output))
 
 # --- 4. include relative to the including file
 directory = os.path.join(WORK, "include")

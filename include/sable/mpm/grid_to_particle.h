@@ -41,7 +41,7 @@ namespace sable::mpm
       /// points whose new position is outside their cell (this rank)
       unsigned int          n_left_cell        = 0;
       /// the kinetic and strain energy the contact's and the walls'
-      /// corrections took from the points in this pass, all ranks
+      /// corrections took from this rank's points in this pass
       /// (measure_corrections())
       double                correction_loss    = 0;
       bool                  not_finite         = false;

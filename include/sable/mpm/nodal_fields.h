@@ -114,22 +114,18 @@ namespace sable::mpm
 
     /// Keep what the walls' conditions change in each pass's velocities
     /// (get_wall_correction()), for the loss of their impacts
-    /// (GridToParticle::measure_corrections()).
+    /// (GridToParticle::measure_corrections()). Before reinit().
     void
     keep_wall_corrections(const bool keep)
     {
       keep_wall_correction = keep;
       if (!keep)
-        {
-          wall_correction       = std::vector<double>();
-          wall_correction_nodes = std::vector<unsigned int>();
-        }
+        wall_correction = std::vector<double>();
     }
 
     /// What the walls' conditions changed in the last pass's velocities,
     /// dim values per node: zero where no wall acts and at a moving wall's
-    /// nodes (its work is boundary work); empty without walls or unless
-    /// kept.
+    /// nodes (its work is boundary work); empty unless kept.
     const std::vector<double> &
     get_wall_correction() const
     {
@@ -143,9 +139,8 @@ namespace sable::mpm
     std::vector<double> mass;
     std::vector<double> old_velocity;
     std::vector<double> new_velocity;
-    bool                      keep_wall_correction = false;
-    std::vector<double>       wall_correction;
-    std::vector<unsigned int> wall_correction_nodes;
+    bool                keep_wall_correction = false;
+    std::vector<double> wall_correction;
   };
 } // namespace sable::mpm
 

@@ -24,9 +24,6 @@ namespace sable::mpm
 
     /// work done by moving walls so far
     double boundary_work = 0;
-    /// kinetic and strain energy the corrections of contact and walls took
-    /// from the points so far (GridToParticle::measure_corrections())
-    double correction_loss = 0;
     /// impulse the bodies of prescribed velocity gave the others so far
     std::array<double, 3> driver_impulse = {{0, 0, 0}};
     /// kinetic + strain energy and gravitational energy at the start
@@ -83,7 +80,6 @@ namespace sable::mpm
         largest_gravity_release &resolved_energy;
       ar &next_output_time &output_counter &statistics_row_due;
       ar &adaptations_without_change &travel_since_adaptation;
-      ar &correction_loss;
     }
   };
 } // namespace sable::mpm

@@ -391,8 +391,12 @@ namespace sable::mpm
     /// sorts only then)
     bool points_left_cells = true;
     /// whether the transfers count what the contact's and the walls'
-    /// corrections take from the points (RunState::correction_loss)
+    /// corrections take from the points (correction_loss)
     bool measure_corrections = false;
+    /// the kinetic and strain energy those corrections took from this
+    /// rank's points so far (GridToParticle::measure_corrections()); summed
+    /// over the ranks for the statistics, and kept on rank 0 by a restart
+    double correction_loss = 0;
     /// on one rank: moves the points that left their cells in place of a
     /// sort; a full sort still runs once the moved points add up to
     /// full_sort_fraction of the points (it orders their data in memory)

@@ -67,21 +67,18 @@ namespace sable::mpm
     constrained.assign(grid.n_relevant_nodes(), false);
     friction_constrained.assign(grid.n_relevant_nodes(), false);
     moving_constrained.assign(grid.n_relevant_nodes(), false);
+    constrained_bytes.assign(grid.n_relevant_nodes(), 0);
+    constrained_list.clear();
     for (const NodeConstraint &c : constraints)
       {
-        constrained[c.node] = true;
+        constrained[c.node]       = true;
+        constrained_bytes[c.node] = 1;
+        constrained_list.push_back(c.node);
         const BoundaryType type = parameters.find(c.id)->second.type;
         if (type == BoundaryType::friction)
           friction_constrained[c.node] = true;
         if (type == BoundaryType::moving)
           moving_constrained[c.node] = true;
-      }
-    constrained_list.clear();
-    constrained_bytes.assign(grid.n_relevant_nodes(), 0);
-    for (const NodeConstraint &c : constraints)
-      {
-        constrained_list.push_back(c.node);
-        constrained_bytes[c.node] = 1;
       }
     std::sort(constrained_list.begin(), constrained_list.end());
     constrained_list.erase(std::unique(constrained_list.begin(), constrained_list.end()),

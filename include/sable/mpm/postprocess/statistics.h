@@ -36,7 +36,7 @@ namespace sable::mpm
     double                      wall_heat = 0;
     /// kinetic and strain energy the corrections of contact and walls
     /// took from the points so far beyond the contact and wall heat
-    /// (RunState::correction_loss less both heats): the normal impacts,
+    /// (GridToParticle::measure_corrections(), less both heats): the normal impacts,
     /// perfectly inelastic at each node, and sticking
     double                      impact_loss = 0;
     /// impulse the bodies of prescribed velocity gave the others so far
