@@ -217,7 +217,7 @@ namespace sable::mpm
     if (!measuring)
       return;
     const unsigned char *const wall_nodes = boundary != nullptr && !boundary->empty() ?
-                                              boundary->constrained_node_bytes().data() :
+                                              boundary->constrained_nodes().data() :
                                               nullptr;
     parallel::apply_to_subranges(
       0u,

@@ -64,15 +64,13 @@ namespace sable::mpm
                                     return key(a) == key(b);
                                   }),
                       constraints.end());
-    constrained.assign(grid.n_relevant_nodes(), false);
+    constrained.assign(grid.n_relevant_nodes(), 0);
     friction_constrained.assign(grid.n_relevant_nodes(), false);
     moving_constrained.assign(grid.n_relevant_nodes(), false);
-    constrained_bytes.assign(grid.n_relevant_nodes(), 0);
     constrained_list.clear();
     for (const NodeConstraint &c : constraints)
       {
-        constrained[c.node]       = true;
-        constrained_bytes[c.node] = 1;
+        constrained[c.node] = 1;
         constrained_list.push_back(c.node);
         const BoundaryType type = parameters.find(c.id)->second.type;
         if (type == BoundaryType::friction)

@@ -149,11 +149,12 @@ namespace sable::mpm
       return constraints.empty();
     }
 
-    /// Per relevant node: whether a wall's condition acts there (setup()).
-    /// At those nodes the walls read the single field even where contact
-    /// keeps per-body records (a moving wall's work, a friction wall's
-    /// reach).
-    const std::vector<bool> &
+    /// Per relevant node: 1 where a wall's condition acts (setup()), one
+    /// byte per node so that many nodes are tested at once without
+    /// branches. At those nodes the walls read the single field even where
+    /// contact keeps per-body records (a moving wall's work, a friction
+    /// wall's reach).
+    const std::vector<unsigned char> &
     constrained_nodes() const
     {
       return constrained;
@@ -164,14 +165,6 @@ namespace sable::mpm
     friction_wall_nodes() const
     {
       return friction_constrained;
-    }
-
-    /// constrained_nodes() as one byte per node (1 where a wall acts), for
-    /// tests of many nodes at once without branches.
-    const std::vector<unsigned char> &
-    constrained_node_bytes() const
-    {
-      return constrained_bytes;
     }
 
     /// The relevant nodes where a wall's condition acts, in order, once each
@@ -247,15 +240,13 @@ namespace sable::mpm
     bool                                                  sticking = false;
     std::vector<NodeConstraint>                            constraints;
     /// per relevant node: whether some constraint acts there
-    std::vector<bool> constrained;
+    std::vector<unsigned char> constrained;
     /// per relevant node: whether a friction wall's constraint acts there
     std::vector<bool> friction_constrained;
     /// per relevant node: whether a moving wall's constraint acts there
     std::vector<bool> moving_constrained;
     /// the nodes of constrained, in order
     std::vector<unsigned int> constrained_list;
-    /// constrained, one byte per node
-    std::vector<unsigned char> constrained_bytes;
     /// per constraint: the tangential speed a friction wall left in the
     /// last apply(), -1 where it did not act
     std::vector<double> slip_left;

@@ -332,7 +332,7 @@ namespace sable::mpm
     BodyFields<dim>         fields;
     /// per relevant node, whether a wall acts there (from
     /// mark_contact_nodes())
-    const std::vector<bool> *wall_nodes = nullptr;
+    const std::vector<unsigned char> *wall_nodes = nullptr;
     /// with_regression: per record, its body's points around the node
     /// (their storage kept from step to step), and the normal out of its
     /// body of the plane fitted between them and the other bodies' points
