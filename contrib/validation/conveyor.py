@@ -1,0 +1,132 @@
+#!/usr/bin/python3
+"""Bodies set down on a conveyor: friction against a driven body, and rolling
+on a body whose material moves across the grid.
+
+A belt (a 2.4 x 0.2 m box of prescribed velocity V = 1 m/s) carries, under
+gravity g = 9.81 m/s^2 and with Coulomb friction mu between them, either
+- a block (0.2 m square, E = 10 MPa, nu = 0.3, rho = 1000 kg/m^3), set down
+  at rest: it slides with a = mu g until it moves with the belt at
+  t* = V / (mu g), then rides along; or
+- a disk (R = 0.2 m, same material), set down at rest: friction drives it
+  forward (a = mu g) and spins it up (alpha = 2 mu g / R) until its bottom
+  moves with the belt at t* = V / (3 mu g); from then on it rolls at V / 3
+  without any force (in the belt's frame it rolls backwards at 2V/3 on a
+  plane at rest).
+Cells of 0.025 m (16 per disk diameter) unless --cells-per-metre says
+otherwise, 2 points per cell direction, `bardenhagen 2001` unless --set
+changes it.
+
+For the disk the same collision is also run in the belt's frame ("at
+rest"): the belt at rest, the disk thrown backwards at -V. The rigid disk
+ends the same in both frames, rolling at V/3 relative to the belt; the
+difference between the two rows is what the motion of the material across
+the grid costs.
+
+Usage: contrib/validation/conveyor.py [--sable build/sable] [--work DIR]
+           [--friction 0.3] [--cases block,disk,disk at rest]
+           [--seeding conforming] [--cells-per-metre 40] [--end-time 0.5]
+           [--set "Section/Entry=value" ...]
+Prints a markdown table (and writes it to DIR/conveyor.md)."""
+import argparse
+import math
+import os
+import sys
+import time
+
+G = 9.81
+BELT_SPEED = 1.0
+RADIUS = 0.2
+MATERIAL = {"Young's modulus": 1e7, "Poisson's ratio": 0.3, "Density": 1000,
+            "Particles per cell direction": 2}
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def scene(case, mu, seeding, cells_per_metre, end_time, extra):
+    """The entries and bodies of one case."""
+    at_rest = case.endswith("at rest")
+    entries = {"Dimension": 2, "Gravity": f"0, {-G}", "Time/End time": end_time,
+               "Grid/Lower corner": "0, 0", "Grid/Upper corner": "3, 0.8",
+               "Grid/Subdivisions": f"{round(3 * cells_per_metre)}, {round(0.8 * cells_per_metre)}",
+               "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": mu,
+               "Output/Statistics interval": 5, **extra}
+    belt = dict(MATERIAL, Shape="box", **{"Lower corner": "0, 0", "Upper corner": "2.4, 0.2",
+                                          "Prescribed velocity": f"{0 if at_rest else BELT_SPEED}, 0"})
+    if case == "block":
+        body = dict(MATERIAL, Shape="box", **{"Lower corner": "0.7, 0.2", "Upper corner": "0.9, 0.4"})
+    else:
+        body = dict(MATERIAL, Shape="disk", Center=f"{2.0 if at_rest else 0.8}, {0.2 + RADIUS}",
+                    Radius=RADIUS, Seeding=seeding, Velocity=f"{-BELT_SPEED if at_rest else 0}, 0")
+    return entries, [belt, body]
+
+
+def rigid_speed(case, mu, t):
+    """The rigid body's speed relative to the belt over the belt's speed
+    (-1 at the start, 0 for the block riding along, -2/3 for the rolling
+    disk)."""
+    if case == "block":
+        return min(-1 + mu * G * t / BELT_SPEED, 0.)
+    return min(-1 + mu * G * t / BELT_SPEED, -2. / 3)
+
+
+def measure(run, case, mu, seeding, cells_per_metre, end_time, extra):
+    entries, bodies = scene(case, mu, seeding, cells_per_metre, end_time, extra)
+    name = f"{case.replace(' ', '_')}_{mu:g}_{seeding}_{cells_per_metre:g}"
+    start = time.time()
+    _, _, rows = run(name, entries, bodies)
+    wall = time.time() - start
+    belt = 0 if case.endswith("at rest") else BELT_SPEED
+    # the body's speed and, for the disk, its bottom's, relative to the belt
+    speed = [(r["time"], (r["body1_vx"] - belt) / BELT_SPEED,
+              (r["body1_vx"] + r["body1_omega"] * RADIUS - belt) / BELT_SPEED) for r in rows]
+    stick_time = V_stick = None
+    for t, v, bottom in speed:
+        if t > 0.01 and abs(bottom if case != "block" else v) <= 0.01:
+            stick_time, V_stick = t, v
+            break
+    t_star = BELT_SPEED / (mu * G) / (1 if case == "block" else 3)
+    end = speed[-1]
+    return {"case": case, "t*": t_star, "stick time": stick_time, "speed at stick": V_stick,
+            "end speed": end[1], "rigid end speed": rigid_speed(case, mu, end[0]),
+            "end slip": end[2] if case != "block" else end[1], "wall": wall}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--sable", default=os.path.join(ROOT, "build", "sable"))
+    parser.add_argument("--work", default=os.path.join(ROOT, "build", "conveyor.work"))
+    parser.add_argument("--friction", type=float, default=0.3)
+    parser.add_argument("--cases", default="block,disk,disk at rest")
+    parser.add_argument("--seeding", default="conforming")
+    parser.add_argument("--cells-per-metre", type=float, default=40)
+    parser.add_argument("--end-time", type=float, default=0.5)
+    parser.add_argument("--set", action="append", default=[], metavar="ENTRY=VALUE",
+                        help='an entry for every run, e.g. "Grid/Shape functions=gimp"')
+    args = parser.parse_args()
+    extra = dict(entry.split("=", 1) for entry in args.set)
+    os.environ["SABLE"] = os.path.abspath(args.sable)
+    os.environ["SABLE_WORK"] = os.path.abspath(args.work)
+    sys.path.insert(0, os.path.join(ROOT, "tests", "mpm"))
+    from scene_test import run  # noqa: E402 (reads SABLE and SABLE_WORK)
+
+    lines = ["| case | rigid: sticks / rolls at t* | sticks / rolls at | speed relative to the belt then "
+             "(rigid) | at the end (rigid) | error at the end | bottom's slip at the end | wall time |",
+             "|---|---|---|---|---|---|---|---|"]
+    for case in args.cases.split(","):
+        m = measure(run, case, args.friction, args.seeding, args.cells_per_metre, args.end_time, extra)
+        rigid_at_stick = -2. / 3 if case != "block" else 0.
+        stuck = (f"{m['stick time']:.3f} s", f"{m['speed at stick']:+.3f} ({rigid_at_stick:+.3f})") \
+            if m["stick time"] is not None else ("never", "")
+        lines.append(f"| {case} | {m['t*']:.3f} s | {stuck[0]} | {stuck[1]} | "
+                     f"{m['end speed']:+.3f} ({m['rigid end speed']:+.3f}) | "
+                     f"{(m['end speed'] - m['rigid end speed']):+.3f} V | {m['end slip']:+.4f} V | "
+                     f"{m['wall']:.0f} s |")
+        print(lines[-1], flush=True)
+    table = "\n".join(lines) + "\n"
+    path = os.path.join(args.work, "conveyor.md")
+    with open(path, "w") as f:
+        f.write(table)
+    print(table + f"(written to {path}; speeds in units of the belt's V = {BELT_SPEED} m/s)")
+
+
+if __name__ == "__main__":
+    main()
