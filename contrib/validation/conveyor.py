@@ -16,17 +16,28 @@ Cells of 0.025 m (16 per disk diameter) unless --cells-per-metre says
 otherwise, 2 points per cell direction, `bardenhagen 2001` unless --set
 changes it.
 
-For the disk the same collision is also run in the belt's frame ("at
+For the disk the same collision is also run in the belt's frame ("disk at
 rest"): the belt at rest, the disk thrown backwards at -V. The rigid disk
 ends the same in both frames, rolling at V/3 relative to the belt; the
 difference between the two rows is what the motion of the material across
-the grid costs.
+the grid costs. Two more cases take the disk already rolling, settled
+first ('Solver/Settling steps'), on an elastic belt (the same box, 100
+times as dense, on a slip floor) so that nothing bounces: "spinning disk",
+the belt moving at V under a disk that spins in place at omega = V / R
+(its centre at rest on the grid), and "rolling disk", the same in the
+belt's frame (the belt at rest, the disk rolling at -V). The rigid disk
+keeps rolling at -V relative to the belt in both.
 
 Usage: contrib/validation/conveyor.py [--sable build/sable] [--work DIR]
-           [--friction 0.3] [--cases block,disk,disk at rest]
+           [--friction 0.3] [--cases block,disk,disk at rest,spinning disk,rolling disk]
            [--seeding conforming] [--cells-per-metre 40] [--end-time 0.5]
            [--set "Section/Entry=value" ...]
-Prints a markdown table (and writes it to DIR/conveyor.md)."""
+Prints a markdown table (and writes it to DIR/conveyor.md). Its last
+columns, from 0.05 s after t* (after the settling for the settled cases):
+the friction force on the body over the normal force, and the moment of
+the normal forces about the disk's centre (the contact's moment less the
+friction's) over N R, positive where it opposes the disk's rolling
+relative to the belt: a rolling resistance of that arm."""
 import argparse
 import math
 import os
@@ -43,7 +54,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 
 def scene(case, mu, seeding, cells_per_metre, end_time, extra):
     """The entries and bodies of one case."""
-    at_rest = case.endswith("at rest")
+    at_rest = case.endswith("at rest") or case == "rolling disk"
+    settled = case in ("spinning disk", "rolling disk")
     entries = {"Dimension": 2, "Gravity": f"0, {-G}", "Time/End time": end_time,
                "Grid/Lower corner": "0, 0", "Grid/Upper corner": "3, 0.8",
                "Grid/Subdivisions": f"{round(3 * cells_per_metre)}, {round(0.8 * cells_per_metre)}",
@@ -51,8 +63,16 @@ def scene(case, mu, seeding, cells_per_metre, end_time, extra):
                "Output/Statistics interval": 5, **extra}
     belt = dict(MATERIAL, Shape="box", **{"Lower corner": "0, 0", "Upper corner": "2.4, 0.2",
                                           "Prescribed velocity": f"{0 if at_rest else BELT_SPEED}, 0"})
+    if settled:
+        entries.update({"Boundary conditions/Types": "2: slip", "Solver/Settling steps": 20000})
+        belt = dict(MATERIAL, Shape="box", Density=100 * MATERIAL["Density"], Velocity=belt.pop("Prescribed velocity"),
+                    **{"Lower corner": "0.2, 0", "Upper corner": "2.2, 0.2"})
     if case == "block":
         body = dict(MATERIAL, Shape="box", **{"Lower corner": "0.7, 0.2", "Upper corner": "0.9, 0.4"})
+    elif settled:
+        body = dict(MATERIAL, Shape="disk", Center=f"1.2, {0.2 + RADIUS}", Radius=RADIUS, Seeding=seeding,
+                    Velocity=f"{-BELT_SPEED if at_rest else 0}, 0",
+                    **{"Angular velocity": BELT_SPEED / RADIUS})
     else:
         body = dict(MATERIAL, Shape="disk", Center=f"{2.0 if at_rest else 0.8}, {0.2 + RADIUS}",
                     Radius=RADIUS, Seeding=seeding, Velocity=f"{-BELT_SPEED if at_rest else 0}, 0")
@@ -65,6 +85,8 @@ def rigid_speed(case, mu, t):
     disk)."""
     if case == "block":
         return min(-1 + mu * G * t / BELT_SPEED, 0.)
+    if case in ("spinning disk", "rolling disk"):
+        return -1.
     return min(-1 + mu * G * t / BELT_SPEED, -2. / 3)
 
 
@@ -74,20 +96,28 @@ def measure(run, case, mu, seeding, cells_per_metre, end_time, extra):
     start = time.time()
     _, _, rows = run(name, entries, bodies)
     wall = time.time() - start
-    belt = 0 if case.endswith("at rest") else BELT_SPEED
     # the body's speed and, for the disk, its bottom's, relative to the belt
-    speed = [(r["time"], (r["body1_vx"] - belt) / BELT_SPEED,
-              (r["body1_vx"] + r["body1_omega"] * RADIUS - belt) / BELT_SPEED) for r in rows]
+    speed = [(r["time"], (r["body1_vx"] - r["body0_vx"]) / BELT_SPEED,
+              (r["body1_vx"] + r["body1_omega"] * RADIUS - r["body0_vx"]) / BELT_SPEED) for r in rows]
     stick_time = V_stick = None
-    for t, v, bottom in speed:
+    for t, v, bottom in speed if case not in ("spinning disk", "rolling disk") else []:
         if t > 0.01 and abs(bottom if case != "block" else v) <= 0.01:
             stick_time, V_stick = t, v
             break
     t_star = BELT_SPEED / (mu * G) / (1 if case == "block" else 3)
     end = speed[-1]
+    # the contact's moment on the disk about its centre, less the
+    # friction's (arm R): the normal forces' moment, over N R (positive
+    # against a spin that rolls the disk forwards relative to the belt)
+    late = [r for r in rows if r["time"] >= max(t_star, 0) + 0.05]
+    normal = sum(-r["contact0_1_fy"] for r in late)
+    friction = sum(-r["contact0_1_fx"] for r in late)
+    moment = sum(r["contact0_1_mb"] - RADIUS * -r["contact0_1_fx"] for r in late)
+    arm = -moment / (normal * RADIUS) if case != "block" and normal else float("nan")
     return {"case": case, "t*": t_star, "stick time": stick_time, "speed at stick": V_stick,
             "end speed": end[1], "rigid end speed": rigid_speed(case, mu, end[0]),
-            "end slip": end[2] if case != "block" else end[1], "wall": wall}
+            "end slip": end[2] if case != "block" else end[1], "friction": friction / normal if normal else 0.,
+            "arm": arm, "wall": wall}
 
 
 def main():
@@ -95,7 +125,7 @@ def main():
     parser.add_argument("--sable", default=os.path.join(ROOT, "build", "sable"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "conveyor.work"))
     parser.add_argument("--friction", type=float, default=0.3)
-    parser.add_argument("--cases", default="block,disk,disk at rest")
+    parser.add_argument("--cases", default="block,disk,disk at rest,spinning disk,rolling disk")
     parser.add_argument("--seeding", default="conforming")
     parser.add_argument("--cells-per-metre", type=float, default=40)
     parser.add_argument("--end-time", type=float, default=0.5)
@@ -109,17 +139,19 @@ def main():
     from scene_test import run  # noqa: E402 (reads SABLE and SABLE_WORK)
 
     lines = ["| case | rigid: sticks / rolls at t* | sticks / rolls at | speed relative to the belt then "
-             "(rigid) | at the end (rigid) | error at the end | bottom's slip at the end | wall time |",
-             "|---|---|---|---|---|---|---|---|"]
+             "(rigid) | at the end (rigid) | error at the end | bottom's slip at the end | friction / N | "
+             "moment of N / (N R) | wall time |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for case in args.cases.split(","):
         m = measure(run, case, args.friction, args.seeding, args.cells_per_metre, args.end_time, extra)
         rigid_at_stick = -2. / 3 if case != "block" else 0.
         stuck = (f"{m['stick time']:.3f} s", f"{m['speed at stick']:+.3f} ({rigid_at_stick:+.3f})") \
-            if m["stick time"] is not None else ("never", "")
-        lines.append(f"| {case} | {m['t*']:.3f} s | {stuck[0]} | {stuck[1]} | "
+            if m["stick time"] is not None else ("rolling from the start" if "g disk" in case else "never", "")
+        t_star = "—" if "g disk" in case else f"{m['t*']:.3f} s"
+        lines.append(f"| {case} | {t_star} | {stuck[0]} | {stuck[1]} | "
                      f"{m['end speed']:+.3f} ({m['rigid end speed']:+.3f}) | "
                      f"{(m['end speed'] - m['rigid end speed']):+.3f} V | {m['end slip']:+.4f} V | "
-                     f"{m['wall']:.0f} s |")
+                     f"{m['friction']:+.4f} | {m['arm']:+.4f} | {m['wall']:.0f} s |")
         print(lines[-1], flush=True)
     table = "\n".join(lines) + "\n"
     path = os.path.join(args.work, "conveyor.md")
