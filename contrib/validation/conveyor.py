@@ -30,6 +30,7 @@ keeps rolling at -V relative to the belt in both.
 
 Usage: contrib/validation/conveyor.py [--sable build/sable] [--work DIR]
            [--friction 0.3] [--cases block,disk,disk at rest,spinning disk,rolling disk]
+           [--dim 2|3]
            [--seeding conforming] [--cells-per-metre 40] [--end-time 0.5]
            [--set "Section/Entry=value" ...]
 Prints a markdown table (and writes it to DIR/conveyor.md). Its last
@@ -52,17 +53,27 @@ MATERIAL = {"Young's modulus": 1e7, "Poisson's ratio": 0.3, "Density": 1000,
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def scene(case, mu, seeding, cells_per_metre, end_time, extra):
-    """The entries and bodies of one case."""
+def scene(case, mu, seeding, cells_per_metre, end_time, extra, dim=2):
+    """The entries and bodies of one case (in 3D a cube or a sphere on a
+    belt 0.6 m wide, the same in every other respect)."""
     at_rest = case.endswith("at rest") or case == "rolling disk"
     settled = case in ("spinning disk", "rolling disk")
-    entries = {"Dimension": 2, "Gravity": f"0, {-G}", "Time/End time": end_time,
-               "Grid/Lower corner": "0, 0", "Grid/Upper corner": "3, 0.8",
-               "Grid/Subdivisions": f"{round(3 * cells_per_metre)}, {round(0.8 * cells_per_metre)}",
+    z = lambda value: f", {value}" if dim == 3 else ""  # noqa: E731 (the third coordinate)
+    size = (3, 0.8) + ((0.6,) if dim == 3 else ())
+    entries = {"Dimension": dim, "Gravity": f"0, {-G}" + z(0), "Time/End time": end_time,
+               "Grid/Lower corner": "0, 0" + z(0), "Grid/Upper corner": ", ".join(map(str, size)),
+               "Grid/Subdivisions": ", ".join(str(round(s * cells_per_metre)) for s in size),
                "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": mu,
                "Output/Statistics interval": 5, **extra}
-    belt = dict(MATERIAL, Shape="box", **{"Lower corner": "0, 0", "Upper corner": "2.4, 0.2",
-                                          "Prescribed velocity": f"{0 if at_rest else BELT_SPEED}, 0"})
+    belt = dict(MATERIAL, Shape="box", **{"Lower corner": "0, 0" + z(0), "Upper corner": "2.4, 0.2" + z(0.6),
+                                          "Prescribed velocity": f"{0 if at_rest else BELT_SPEED}, 0" + z(0)})
+    if dim == 3:
+        if case == "block":
+            body = dict(MATERIAL, Shape="box", **{"Lower corner": "0.7, 0.2, 0.2", "Upper corner": "0.9, 0.4, 0.4"})
+        else:
+            body = dict(MATERIAL, Shape="sphere", Center=f"{2.0 if at_rest else 0.8}, {0.2 + RADIUS}, 0.3",
+                        Radius=RADIUS, Seeding=seeding, Velocity=f"{-BELT_SPEED if at_rest else 0}, 0, 0")
+        return entries, [belt, body]
     if settled:
         entries.update({"Boundary conditions/Types": "2: slip", "Solver/Settling steps": 20000})
         belt = dict(MATERIAL, Shape="box", Density=100 * MATERIAL["Density"], Velocity=belt.pop("Prescribed velocity"),
@@ -79,32 +90,42 @@ def scene(case, mu, seeding, cells_per_metre, end_time, extra):
     return entries, [belt, body]
 
 
-def rigid_speed(case, mu, t):
+def rolling_speed(dim):
+    """The rolling disk's (sphere's) speed relative to the belt once its
+    bottom moves with it, over the belt's speed: its speed v and spin
+    omega R = (m R^2 / I) v add up to V, v = V / 3 (2V / 7 for a sphere)."""
+    return -(1 - (1. / 3 if dim == 2 else 2. / 7))
+
+
+def rigid_speed(case, mu, t, dim=2):
     """The rigid body's speed relative to the belt over the belt's speed
     (-1 at the start, 0 for the block riding along, -2/3 for the rolling
-    disk)."""
+    disk, -5/7 for the rolling sphere)."""
     if case == "block":
         return min(-1 + mu * G * t / BELT_SPEED, 0.)
     if case in ("spinning disk", "rolling disk"):
         return -1.
-    return min(-1 + mu * G * t / BELT_SPEED, -2. / 3)
+    return min(-1 + mu * G * t / BELT_SPEED, rolling_speed(dim))
 
 
-def measure(run, case, mu, seeding, cells_per_metre, end_time, extra):
-    entries, bodies = scene(case, mu, seeding, cells_per_metre, end_time, extra)
-    name = f"{case.replace(' ', '_')}_{mu:g}_{seeding}_{cells_per_metre:g}"
+def measure(run, case, mu, seeding, cells_per_metre, end_time, extra, dim=2):
+    entries, bodies = scene(case, mu, seeding, cells_per_metre, end_time, extra, dim)
+    name = f"{case.replace(' ', '_')}_{mu:g}_{seeding}_{cells_per_metre:g}_{dim}d"
+    spin = "body1_omega" + ("_z" if dim == 3 else "")
+    moment_b = "contact0_1_mb" + ("_z" if dim == 3 else "")
     start = time.time()
     _, _, rows = run(name, entries, bodies)
     wall = time.time() - start
     # the body's speed and, for the disk, its bottom's, relative to the belt
     speed = [(r["time"], (r["body1_vx"] - r["body0_vx"]) / BELT_SPEED,
-              (r["body1_vx"] + r["body1_omega"] * RADIUS - r["body0_vx"]) / BELT_SPEED) for r in rows]
+              (r["body1_vx"] + r[spin] * RADIUS - r["body0_vx"]) / BELT_SPEED) for r in rows]
     stick_time = V_stick = None
     for t, v, bottom in speed if case not in ("spinning disk", "rolling disk") else []:
-        if t > 0.01 and abs(bottom if case != "block" else v) <= 0.01:
+        # the first row at which it has caught up with the belt (within 1%)
+        if t > 0.01 and (bottom if case != "block" else v) >= -0.01:
             stick_time, V_stick = t, v
             break
-    t_star = BELT_SPEED / (mu * G) / (1 if case == "block" else 3)
+    t_star = BELT_SPEED / (mu * G) * (1 if case == "block" else 1 + rolling_speed(dim))
     end = speed[-1]
     # the contact's moment on the disk about its centre, less the
     # friction's (arm R): the normal forces' moment, over N R (positive
@@ -112,10 +133,10 @@ def measure(run, case, mu, seeding, cells_per_metre, end_time, extra):
     late = [r for r in rows if r["time"] >= max(t_star, 0) + 0.05]
     normal = sum(-r["contact0_1_fy"] for r in late)
     friction = sum(-r["contact0_1_fx"] for r in late)
-    moment = sum(r["contact0_1_mb"] - RADIUS * -r["contact0_1_fx"] for r in late)
+    moment = sum(r[moment_b] - RADIUS * -r["contact0_1_fx"] for r in late)
     arm = -moment / (normal * RADIUS) if case != "block" and normal else float("nan")
     return {"case": case, "t*": t_star, "stick time": stick_time, "speed at stick": V_stick,
-            "end speed": end[1], "rigid end speed": rigid_speed(case, mu, end[0]),
+            "end speed": end[1], "rigid end speed": rigid_speed(case, mu, end[0], dim),
             "end slip": end[2] if case != "block" else end[1], "friction": friction / normal if normal else 0.,
             "arm": arm, "wall": wall}
 
@@ -129,6 +150,8 @@ def main():
     parser.add_argument("--seeding", default="conforming")
     parser.add_argument("--cells-per-metre", type=float, default=40)
     parser.add_argument("--end-time", type=float, default=0.5)
+    parser.add_argument("--dim", type=int, default=2, choices=(2, 3),
+                        help="3: a cube and a sphere (cases block, disk, disk at rest only)")
     parser.add_argument("--set", action="append", default=[], metavar="ENTRY=VALUE",
                         help='an entry for every run, e.g. "Grid/Shape functions=gimp"')
     args = parser.parse_args()
@@ -143,8 +166,11 @@ def main():
              "moment of N / (N R) | wall time |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for case in args.cases.split(","):
-        m = measure(run, case, args.friction, args.seeding, args.cells_per_metre, args.end_time, extra)
-        rigid_at_stick = -2. / 3 if case != "block" else 0.
+        if args.dim == 3 and case in ("spinning disk", "rolling disk"):
+            sys.exit(f"--dim 3: case '{case}' is not built in 3D (cases: block, disk, disk at rest)")
+        m = measure(run, case, args.friction, args.seeding, args.cells_per_metre, args.end_time, extra,
+                    args.dim)
+        rigid_at_stick = rolling_speed(args.dim) if case != "block" else 0.
         stuck = (f"{m['stick time']:.3f} s", f"{m['speed at stick']:+.3f} ({rigid_at_stick:+.3f})") \
             if m["stick time"] is not None else ("rolling from the start" if "g disk" in case else "never", "")
         t_star = "—" if "g disk" in case else f"{m['t*']:.3f} s"
