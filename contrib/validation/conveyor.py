@@ -34,13 +34,12 @@ Usage: contrib/validation/conveyor.py [--sable build/sable] [--work DIR]
            [--seeding conforming] [--cells-per-metre 40] [--end-time 0.5]
            [--set "Section/Entry=value" ...]
 Prints a markdown table (and writes it to DIR/conveyor.md). Its last
-columns, from 0.05 s after t* (after the settling for the settled cases):
+columns, from 0.05 s after t* (the same time for the settled cases):
 the friction force on the body over the normal force, and the moment of
 the normal forces about the disk's centre (the contact's moment less the
 friction's) over N R, positive where it opposes the disk's rolling
 relative to the belt: a rolling resistance of that arm."""
 import argparse
-import math
 import os
 import sys
 import time

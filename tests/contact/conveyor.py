@@ -23,7 +23,6 @@ After t* the rigid disk rolls on at V / 3. This disk gains speed instead
 (0.45 V at 0.5 s; in the belt's frame, on a belt at rest, 0.37 V): see
 doc/validation.md, "On a conveyor"; not checked here.
 """
-import math
 import os
 import sys
 
