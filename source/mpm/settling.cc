@@ -114,8 +114,10 @@ namespace sable::mpm
           << " s of damped motion)" << std::endl;
 
     // the run starts now, from the settled state, each body moving with its
-    // velocity and spinning about its settled centre of mass
+    // velocity and spinning about its settled centre of mass, a driver with
+    // its velocity at time 0
     const Statistics<dim> settled = compute_statistics();
+    prescribed_velocities.update(0.);
     double                max_speed = 0;
     for (auto &particle : *particle_handler)
       {
@@ -132,7 +134,9 @@ namespace sable::mpm
         const Tensor<1, 3> spin = cross_product_3d(body.angular_velocity, r);
         Tensor<1, dim>     v;
         for (unsigned int d = 0; d < dim; ++d)
-          props[layout.velocity + d] = v[d] = body.velocity[d] + spin[d];
+          props[layout.velocity + d] = v[d] = prescribed_velocities.is_prescribed(b) ?
+                                                prescribed_velocities.velocity(b)[d] :
+                                                body.velocity[d] + spin[d];
         if (layout.affine_stored)
           layout.set_affine(props, spin_velocity_gradient<dim>(body.angular_velocity));
         // displacements count from time 0, the settled state

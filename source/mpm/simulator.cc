@@ -449,7 +449,11 @@ namespace sable::mpm
   Simulator<dim>::advance()
   {
     state.time_step = compute_time_step();
-    if (prescribed_velocities.any() && prescribed_velocities.update(state.time))
+    // drivers stay at rest while the bodies settle: the run, and their
+    // motion, start from the settled state
+    if (prescribed_velocities.any() &&
+        prescribed_velocities.update(settling ? -std::numeric_limits<double>::infinity() :
+                                                state.time))
       {
         // a driver that starts (or stops) changes its kinetic energy: work
         // done on it from outside, as a moving wall's
