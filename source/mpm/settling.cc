@@ -43,6 +43,8 @@ namespace sable::mpm
         contact->get_model().stick_everywhere(stick);
     };
     stick_everywhere(parameters.settling_stick);
+    // moving walls and drivers (advance()) start with the run
+    boundary_conditions.hold_moving_walls(true);
     double       previous = 0, kinetic = 0, peak = std::numeric_limits<double>::max();
     double       strain_energy = 0;
     unsigned int n             = 0;
@@ -82,6 +84,7 @@ namespace sable::mpm
     settling           = false;
     parameters.gravity = run_gravity;
     stick_everywhere(false);
+    boundary_conditions.hold_moving_walls(false);
     // disks seeded conforming settle slowly on a floor or a body, and on
     // a friction floor at 25.6 cells per diameter not in 40,000 steps
     // (doc/validation.md, "Disks at rest: lattice and conforming seeding")

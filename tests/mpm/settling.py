@@ -28,6 +28,13 @@ After settling, the run starts at t = 0 with the seeded velocity and spin
 (first row: exactly the seeded values), and too few settling steps stop
 the run with a message naming the entry. A run shorter than the settling
 settles all the same.
+
+Moving walls start with the run: a block (0.2 m, E = 10 MPa) on a floor
+moving at 0.5 m/s settles with the floor at rest, starts the run where it
+was seeded and at rest, and is then carried off (its mean speed over the
+0.1 s above half the floor's; measured 0.49 m/s). Before, the floor moved while
+the block settled, and the settling never ended (its kinetic energy's
+peaks stayed at 18 J).
 """
 import math
 import re
@@ -161,4 +168,22 @@ travel = settled[-1]["body0_x"] - settled[0]["body0_x"]
 check("on a slope, settled: the disk rolls, its travel within 3% of the rigid disk's",
       abs(travel - rigid) <= 0.03 * rigid, f"{travel:.5f} m against {rigid:.5f} ({travel / rigid - 1:+.2%}); "
       f"unsettled {(dropped[-1]['body0_x'] - dropped[0]['body0_x']) / rigid - 1:+.2%}")
+
+# moving walls start with the run
+code, output, carried = run("moving_floor", {
+    "Dimension": 2, "Gravity": "0, -9.81", "Time/End time": 0.1, "Grid/Lower corner": "0, 0",
+    "Grid/Upper corner": "2, 0.6", "Grid/Subdivisions": "80, 24", "Boundary conditions/Types": "2: moving",
+    "Boundary conditions/Wall velocities": "2: 0.5; 0", "Solver/Settling steps": 20000,
+    "Output/Statistics interval": 5,
+}, [{"Shape": "box", "Lower corner": "0.5, 0", "Upper corner": "0.7, 0.2", "Young's modulus": 1e7,
+     "Poisson's ratio": 0.3, "Density": 1000}], expect_success=False)
+check("a block on a moving floor settles with the floor at rest", code == 0 and "Settled under gravity" in output,
+      output.strip().splitlines()[-1] if output.strip() else "")
+if code == 0:
+    check("... starts the run where it was seeded, at rest",
+          abs(carried[0]["body0_x"] - 0.6) <= 1e-6 and carried[0]["body0_vx"] == 0,
+          f"x {carried[0]['body0_x']:.9f}, vx {carried[0]['body0_vx']}")
+    mean_speed = (carried[-1]["body0_x"] - carried[0]["body0_x"]) / carried[-1]["time"]
+    check("... and is carried off by the floor once the run starts (mean speed above half the floor's)",
+          mean_speed > 0.25, f"{mean_speed:.3f} m/s")
 finish()

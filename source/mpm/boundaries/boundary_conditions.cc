@@ -146,9 +146,12 @@ namespace sable::mpm
           v[c.direction] = 0.;
           return -1.;
         case BoundaryType::moving:
-          for (unsigned int d = 0; d < dim; ++d)
-            v[d] = wall.velocity[d];
-          return -1.;
+          {
+            const Tensor<1, dim> wall_velocity = velocity_of(wall);
+            for (unsigned int d = 0; d < dim; ++d)
+              v[d] = wall_velocity[d];
+            return -1.;
+          }
         case BoundaryType::friction:
           {
             // SPEC step 6 with the wall (at rest) as the other body: act
@@ -186,7 +189,7 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       before[d] = v[d];
     if (wall.type == BoundaryType::moving)
-      wall_velocity = wall.velocity;
+      wall_velocity = velocity_of(wall);
     const double result = apply_one(c, v);
     Tensor<1, dim> change;
     for (unsigned int d = 0; d < dim; ++d)
@@ -222,8 +225,11 @@ namespace sable::mpm
         double *const                  v    = &velocity[c.node * dim];
         const BoundaryParameters<dim> &wall = parameters.find(c.id)->second;
         if (wall.type == BoundaryType::moving && c.node < n_owned_nodes)
-          for (unsigned int d = 0; d < dim; ++d)
-            work += mass[c.node] * (wall.velocity[d] - v[d]) * wall.velocity[d];
+          {
+            const Tensor<1, dim> wall_velocity = velocity_of(wall);
+            for (unsigned int d = 0; d < dim; ++d)
+              work += mass[c.node] * (wall_velocity[d] - v[d]) * wall_velocity[d];
+          }
         if (wall.type == BoundaryType::friction && out_of_reach_of(c, v, mass[c.node]))
           {
             out_of_reach[i] = true;

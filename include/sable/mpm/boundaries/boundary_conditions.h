@@ -111,6 +111,15 @@ namespace sable::mpm
       sticking = stick;
     }
 
+    /// While @p rest, moving walls hold the nodes at rest like fixed
+    /// walls: bodies settling before the run (Solver/Settling steps),
+    /// whose walls start moving with the run.
+    void
+    hold_moving_walls(const bool rest)
+    {
+      moving_walls_at_rest = rest;
+    }
+
     /// Count the friction walls' heat in MUSL's remapped pass
     /// (count_heat_on_remapped()) instead of at the corrected velocities;
     /// see MultiBodyContact::count_heat_at_remapped_velocities(). Without
@@ -238,6 +247,14 @@ namespace sable::mpm
 
     std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
     bool                                                  sticking = false;
+    bool                                                  moving_walls_at_rest = false;
+
+    /// A moving wall's velocity now (zero while hold_moving_walls()).
+    Tensor<1, dim>
+    velocity_of(const BoundaryParameters<dim> &wall) const
+    {
+      return moving_walls_at_rest ? Tensor<1, dim>() : wall.velocity;
+    }
     std::vector<NodeConstraint>                            constraints;
     /// per relevant node: whether some constraint acts there
     std::vector<unsigned char> constrained;
