@@ -32,6 +32,8 @@ cases = [
     ("radius_zero", {}, {"Radius": 0}, ["Radius", "0", "> 0"]),
     ("friction_negative", {"Boundary conditions/Types": "2: friction",
                            "Boundary conditions/Friction coefficients": "2: -0.1"}, {}, ["Friction coefficients", "-0.1", ">= 0"]),
+    ("moving_without_velocity", {"Boundary conditions/Types": "2: moving"}, {},
+     ["Wall velocities", "moving", "id 2 has none"]),
     ("yield_missing", {}, {"Material": "von Mises"}, ["Body 0/von Mises/Yield stress", "0", "> 0"]),
     ("refinement_levels", {"Mesh refinement/Criteria": "body surface", "Mesh refinement/Minimum level": 3,
                            "Mesh refinement/Maximum level": 2}, {}, ["Minimum level", "3", "<= 'Maximum level' = 2"]),

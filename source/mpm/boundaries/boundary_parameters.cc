@@ -5,6 +5,8 @@
 #include <sable/mpm/boundaries/boundary_parameters.h>
 #include <sable/mpm/parameter_tools.h>
 
+#include <set>
+
 namespace sable::mpm
 {
   namespace
@@ -67,8 +69,8 @@ namespace sable::mpm
                       "",
                       Patterns::Map(Patterns::Integer(0, 255),
                                     Patterns::List(Patterns::Double(), dim, dim, ";")),
-                      "Velocity per moving boundary, components separated "
-                      "by ';', e.g. '3: 0.1; 0'.");
+                      "Velocity of each moving boundary (every one needs "
+                      "one), components separated by ';', e.g. '3: 0.1; 0'.");
   }
 
   template <int dim>
@@ -95,6 +97,7 @@ namespace sable::mpm
     const WallContact wall_contact = wall_contacts.value(prm.get("Friction wall contact"));
     for (auto &[id, boundary] : boundaries)
       boundary.wall_contact = wall_contact;
+    std::set<types::boundary_id> moving_with_velocity;
     for (const auto &[id, value] : split_map(prm.get("Wall velocities")))
       {
         const auto it = boundaries.find(std::stoi(id));
@@ -106,7 +109,15 @@ namespace sable::mpm
           Utilities::string_to_double(Utilities::split_string_list(value, ';'));
         for (unsigned int d = 0; d < dim; ++d)
           it->second.velocity[d] = v[d];
+        moving_with_velocity.insert(it->first);
       }
+    // a moving wall without a velocity would hold the nodes as a fixed one
+    for (const auto &[id, boundary] : boundaries)
+      check_input(boundary.type != BoundaryType::moving || moving_with_velocity.count(id) > 0,
+                  "Boundary conditions/Wall velocities",
+                  prm.get("Wall velocities"),
+                  "a velocity for each boundary id whose type is moving (id " + std::to_string(id) +
+                    " has none)");
     return boundaries;
   }
 
