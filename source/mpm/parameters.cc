@@ -378,6 +378,20 @@ namespace sable::mpm
     BoundaryParameters<dim>::check(p.boundaries);
     for (unsigned int b = 0; b < p.bodies.size(); ++b)
       p.bodies[b].check(p.bodies[b].name(b));
+    // a pair of groups no body belongs to is a typo that would leave the
+    // pair meant with the default coefficient
+    std::set<unsigned int> groups;
+    for (const auto &body : p.bodies)
+      groups.insert(body.group);
+    std::string group_list;
+    for (const unsigned int g : groups)
+      group_list += (group_list.empty() ? "" : ", ") + std::to_string(g);
+    for (const auto &[pair, mu] : p.contact.group_friction)
+      check_input(groups.count(pair.first) > 0 && groups.count(pair.second) > 0,
+                  "Contact/Group friction",
+                  std::to_string(pair.first) + "-" + std::to_string(pair.second),
+                  "pairs of the groups the bodies belong to ('Group' of each body: " +
+                    group_list + ")");
     p.refinement.check();
     // measured in doc/mpm.md, Spinning bodies: with linear functions the
     // gradient of a node of little mass stays large while its weight

@@ -156,6 +156,10 @@ namespace sable::mpm
                     "entries '<group>-<group>: <coefficient or stick>'");
         const unsigned int a = Utilities::string_to_int(groups[0]);
         const unsigned int b = Utilities::string_to_int(groups[1]);
+        check_input(c.group_friction.count({std::min(a, b), std::max(a, b)}) == 0,
+                    "Contact/Group friction", pair + ": " + value,
+                    "each pair of groups once (" + std::to_string(std::min(a, b)) + "-" +
+                      std::to_string(std::max(a, b)) + " is given twice)");
         c.group_friction[{std::min(a, b), std::max(a, b)}] =
           parse_friction(value, "Contact/Group friction");
       }
