@@ -245,16 +245,17 @@ namespace sable::mpm
                        const double          mass,
                        double &              dissipation) const;
 
-    std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
-    bool                                                  sticking = false;
-    bool                                                  moving_walls_at_rest = false;
-
     /// A moving wall's velocity now (zero while hold_moving_walls()).
     Tensor<1, dim>
     velocity_of(const BoundaryParameters<dim> &wall) const
     {
       return moving_walls_at_rest ? Tensor<1, dim>() : wall.velocity;
     }
+
+    std::map<types::boundary_id, BoundaryParameters<dim>> parameters;
+    bool                                                  sticking = false;
+    /// hold_moving_walls()
+    bool                                                  moving_walls_at_rest = false;
     std::vector<NodeConstraint>                            constraints;
     /// per relevant node: whether some constraint acts there
     std::vector<unsigned char> constrained;
