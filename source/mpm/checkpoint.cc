@@ -246,8 +246,9 @@ namespace sable::mpm
   void
   Simulator<dim>::resume(const std::string &directory)
   {
-    AssertThrow(!initialized,
-                ExcMessage("resume() replaces initialize(): call it once, on a new Simulator."));
+    AssertThrow(!seeded && !initialized,
+                ExcMessage("resume() replaces seed() and initialize(): call it once, on a new "
+                           "Simulator."));
     TimerOutput::Scope scope(timer, "initialize");
     const fs::path path(directory);
 

@@ -70,22 +70,26 @@ namespace sable::mpm
     const bool       resume = mode == OutputMode::resume;
     const Scene<dim> scene  = read_scene<dim>(filename, settings);
     check_memory(scene, communicator);
-    // the output directory (locked for the run) and the checkpoint to
-    // resume from, before any work
-    const OutputDirectory output_directory(scene.simulator.output_directory,
-                                           mode,
-                                           communicator,
-                                           std::cout);
-    const std::string     checkpoint =
-      resume ? find_checkpoint(scene.simulator.output_directory, communicator, std::cout) : "";
     parallel::distributed::Triangulation<dim> triangulation(communicator);
     make_grid(scene.grid, triangulation, /*refine=*/!resume);
     std::optional<Simulator<dim>> simulator;
     simulator.emplace(triangulation, scene.simulator);
     try
       {
+        // a new run's bodies are seeded and checked before the output
+        // directory is touched: --overwrite removes nothing for a scene
+        // that is refused
+        if (!resume)
+          simulator->seed();
+        // the output directory (locked for the run) and the checkpoint to
+        // resume from
+        const OutputDirectory output_directory(scene.simulator.output_directory,
+                                               mode,
+                                               communicator,
+                                               std::cout);
         if (resume)
-          simulator->resume(checkpoint);
+          simulator->resume(
+            find_checkpoint(scene.simulator.output_directory, communicator, std::cout));
         simulator->run();
       }
     catch (...)

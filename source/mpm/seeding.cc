@@ -58,21 +58,18 @@ namespace sable::mpm
         // the shifts by whole periods that bring part of the body into the
         // grid: a body crossing a periodic face is seeded wrapped, its
         // points at x + shift
-        std::vector<Tensor<1, dim>> shifts(1);
-        for (unsigned int d = 0; d < dim; ++d)
-          if (periodicity.periodic[d])
-            {
-              const std::size_t n = shifts.size();
-              for (const double sign : {-1., 1.})
-                for (std::size_t i = 0; i < n; ++i)
-                  {
-                    Tensor<1, dim> shift = shifts[i];
-                    shift[d]             = sign * periodicity.period(d);
-                    if (box.first[d] + shift[d] < periodicity.upper[d] &&
-                        box.second[d] + shift[d] > periodicity.lower[d])
-                      shifts.push_back(shift);
-                  }
-            }
+        std::vector<Tensor<1, dim>> shifts = periodicity.image_shifts();
+        shifts.erase(std::remove_if(shifts.begin(),
+                                    shifts.end(),
+                                    [&](const Tensor<1, dim> &shift) {
+                                      for (unsigned int d = 0; d < dim; ++d)
+                                        if (shift[d] != 0 &&
+                                            (box.first[d] + shift[d] >= periodicity.upper[d] ||
+                                             box.second[d] + shift[d] <= periodicity.lower[d]))
+                                          return true;
+                                      return false;
+                                    }),
+                     shifts.end());
         const auto shifted = [](const std::pair<Point<dim>, Point<dim>> &b,
                                 const Tensor<1, dim> &                  shift) {
           return std::make_pair(b.first + shift, b.second + shift);

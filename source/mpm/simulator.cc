@@ -6,6 +6,7 @@
 #include <sable/base/checkpoint_directory.h>
 #include <sable/base/input_error.h>
 #include <sable/base/write_check.h>
+#include <sable/mpm/bodies/body_overlap.h>
 #include <sable/mpm/postprocess/contact_node_output.h>
 #include <sable/mpm/postprocess/grid_output.h>
 #include <sable/mpm/postprocess/particle_output.h>
@@ -70,8 +71,7 @@ namespace sable::mpm
   void
   Simulator<dim>::add_body(const BodyParameters<dim> &body)
   {
-    AssertThrow(!initialized,
-                ExcMessage("Bodies must be added before initialize()."));
+    AssertThrow(!seeded, ExcMessage("Bodies must be added before seed() and initialize()."));
     parameters.bodies.push_back(body);
   }
 
@@ -253,9 +253,9 @@ namespace sable::mpm
 
   template <int dim>
   void
-  Simulator<dim>::initialize()
+  Simulator<dim>::seed()
   {
-    if (initialized)
+    if (seeded)
       return;
     TimerOutput::Scope scope(timer, "initialize");
     setup_models();
@@ -314,6 +314,19 @@ namespace sable::mpm
                     "a body large enough to hold at least one material point "
                     "on this grid");
     }
+    check_bodies_apart(parameters.bodies, *particle_handler, layout, grid.periodicity(),
+                       communicator);
+    seeded = true;
+  }
+
+  template <int dim>
+  void
+  Simulator<dim>::initialize()
+  {
+    if (initialized)
+      return;
+    seed();
+    TimerOutput::Scope scope(timer, "initialize");
 
     set_contact_body_shapes();
 

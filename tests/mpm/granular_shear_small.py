@@ -18,9 +18,10 @@ contrib/packs/disk_pack.py:
 
 Bodies file: a missing file, a bad header, a row that is not a number, a
 grain centred outside the grid, a grain reaching beyond a face that holds
-no grains (on the scene made not periodic), a bad template entry and grains
-held by a face of the periodic axis stop sable before any work with a
-message naming the file, line and entry.
+no grains (on the scene made not periodic), a bad template entry, grains
+held by a face of the periodic axis and grains that overlap (side by side,
+or across the periodic seam) stop sable before any work with a message
+naming the file, line and entry.
 
 The scene (43 von Mises grains, mu = 0.3, 30% shear, periodic in y, one
 rank: contact on a periodic grid is refused on several, see
@@ -185,6 +186,10 @@ cases = [
     ("centre outside", header + "1e-4,1e-4,2e-5\n\n5e-4,1e-4,2e-5\n", "g.csv", ["g.csv, line 4", "inside the grid"]),
     ("crossing a free face", header + "2e-4,1e-5,2e-5\n", "g.csv",
      ["g.csv, line 2 (radius)", "Lower y wall velocity is empty"]),
+    ("overlapping grains", header + "1e-4,2e-4,4e-5\n2e-4,3e-4,3e-5\n1.5e-4,2e-4,4e-5\n", "g.csv",
+     ["g.csv, line 2", "g.csv, line 4", "overlap", "quarter of its spacing"]),
+    ("overlapping across the periodic seam", header + "2e-4,1e-5,4e-5\n2e-4,3.8e-4,4e-5\n", "g.csv",
+     ["g.csv, line 2", "g.csv, line 3", "overlap"]),
 ]
 # the scene is periodic in y; the face checks need a grid that is not
 NOT_PERIODIC = ["--set", "Grid/Periodic axes=", "--set", "Boundary conditions/Types=0: slip, 1: slip, 2: slip, 3: slip"]

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace sable::mpm
 {
@@ -73,6 +74,28 @@ namespace sable::mpm
         if (periodic[d])
           shift[d] = std::round((to[d] - from[d]) / period(d)) * period(d);
       return shift;
+    }
+
+    /// The whole-period shifts of a position's images: zero first, then
+    /// -P and +P along each periodic axis in turn, combined with the
+    /// shifts before (3^k in all for k periodic axes).
+    std::vector<Tensor<1, dim>>
+    image_shifts() const
+    {
+      std::vector<Tensor<1, dim>> shifts(1);
+      for (unsigned int d = 0; d < dim; ++d)
+        if (periodic[d])
+          {
+            const std::size_t n = shifts.size();
+            for (const double sign : {-1., 1.})
+              for (std::size_t i = 0; i < n; ++i)
+                {
+                  Tensor<1, dim> shift = shifts[i];
+                  shift[d]             = sign * period(d);
+                  shifts.push_back(shift);
+                }
+          }
+      return shifts;
     }
 
     /// The periodic axes as "x, y", or "none".

@@ -62,9 +62,17 @@ namespace sable::mpm
     void
     add_body(const BodyParameters<dim> &body);
 
-    /// Check the input, refine the grid where the scene's refinement
-    /// criteria ask (this changes the caller's triangulation), seed the
-    /// particles, set up grid and output.
+    /// The first part of initialize(), which calls it if needed: refine
+    /// the grid where the scene's refinement criteria ask (this changes
+    /// the caller's triangulation) and seed the bodies, refusing
+    /// (InputError) a body without a material point and bodies seeded into
+    /// each other. Writes nothing, so that a program can have the scene
+    /// checked before it prepares an output directory.
+    void
+    seed();
+
+    /// seed() if needed, settle the bodies if asked, and set up the
+    /// statistics and output (the first row and particle files).
     void
     initialize();
 
@@ -357,6 +365,7 @@ namespace sable::mpm
     ConditionalOStream                         pcout;
     mutable TimerOutput                        timer;
     bool                                       parallel = false;
+    bool                                       seeded      = false;
     bool                                       initialized = false;
 
     Grid<dim>                                        grid;

@@ -5,8 +5,10 @@
 #include <sable/mpm/bodies/body_parameters.h>
 #include <sable/mpm/parameter_tools.h>
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
+#include <limits>
 
 namespace sable::mpm
 {
@@ -129,6 +131,28 @@ namespace sable::mpm
       if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
         return false;
     return true;
+  }
+
+  template <int dim>
+  double
+  BodyParameters<dim>::depth_inside(const Point<dim> &x) const
+  {
+    if (shape == Shape::points)
+      return 0.;
+    if (shape == Shape::disk)
+      return std::max(0., radius - (x - center).norm());
+    if (shape == Shape::mesh)
+      {
+        if (!mesh.contains(x))
+          return 0.;
+        // the nearest boundary facet (a negative edge margin takes it even
+        // near an edge)
+        return mesh.face_below(x, std::numeric_limits<double>::max(), -1.).depth;
+      }
+    double depth = std::numeric_limits<double>::max();
+    for (unsigned int d = 0; d < dim; ++d)
+      depth = std::min({depth, x[d] - lower_corner[d], upper_corner[d] - x[d]});
+    return std::max(0., depth);
   }
 
   template <int dim>

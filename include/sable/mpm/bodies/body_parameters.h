@@ -119,6 +119,10 @@ namespace sable::mpm
     /// Whether @p x is inside a disk, box or mesh (never for points).
     bool
     contains(const Point<dim> &x) const;
+    /// How deep @p x lies inside a disk, box or mesh: its distance to the
+    /// surface, 0 outside (and always for points).
+    double
+    depth_inside(const Point<dim> &x) const;
     /// The flat face nearest @p x (a box's, or a mesh's boundary facet):
     /// its outward unit normal and the depth of @p x below it; a zero
     /// normal if @p x lies deeper than @p depth_limit, if a face of another
