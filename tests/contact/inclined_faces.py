@@ -46,7 +46,7 @@ that equilibrium within 1% of the rigid block (measured +0.10% and
 
 A disk (R = 0.2 m, 16 cells per diameter, seeded conforming) rolls on the
 2D wedge at 25, 35, 40 and 45 deg within 3% of the rigid rolling disk
-(measured +0.42%, +0.29%, +1.57%, -0.46%). The wedge's surface is located
+(measured +2.02%, +0.08%, +1.93%, +0.86%). The wedge's surface is located
 where its points' vectors to the face end (doc/mpm.md, "Detection"); with
 the centroid's depth below a grid-aligned surface, as before, the same
 disks lagged -3.9%, -5.7%, -7.1% and -5.0%. Not every registration is
