@@ -5,7 +5,7 @@
 # cell) in a square lattice, each touching its neighbours, on a fixed floor
 # under gravity, 2D, MUSL, one thread, output off, 20 steps (or the number
 # given). Variants: the defaults, each contact option changed alone, the
-# disks seeded conforming, the floor a friction wall (either contact
+# update schemes USL and USAVG, the disks seeded conforming, the floor a friction wall (either contact
 # criterion), the GIMP functions (with MUSL, with USL, with USL and the
 # affine transfers), and contact 'none' (one velocity field: the
 # single-field step).
@@ -65,6 +65,10 @@ variants=("defaults|"
           "Nodes with three or more bodies = centre of mass|  set Nodes with three or more bodies = centre of mass"
           "Model = bardenhagen 2000|  set Model = bardenhagen 2000"
           "Friction coefficient = 0|  set Friction coefficient = 0"
+          "Impulse scaling = off|  set Impulse scaling = off"
+          "Passes = momentum update|  set Passes = momentum update"
+          "Update scheme = USL|||| subsection Solver\n  set Update scheme = USL\nend"
+          "Update scheme = USAVG|||| subsection Solver\n  set Update scheme = USAVG\nend"
           "Seeding = conforming||  set Seeding = conforming"
           "floor: friction wall, surface position|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3"
           "floor: friction wall, material|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3\n  set Friction wall contact = material"
