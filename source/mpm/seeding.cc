@@ -123,14 +123,8 @@ namespace sable::mpm
               for (unsigned int d = 0; d < dim; ++d)
                 properties[layout.surface_normal() + d] = face.normal[d];
               if (layout.to_surface_stored)
-                {
-                  const Tensor<1, dim> to_surface =
-                    body.shape == BodyParameters<dim>::Shape::disk ?
-                      body.to_lattice_circle(x_body, surface_layer * cell) :
-                      Tensor<1, dim>(face.depth * face.normal);
-                  for (unsigned int d = 0; d < dim; ++d)
-                    properties[layout.to_surface() + d] = to_surface[d];
-                }
+                for (unsigned int d = 0; d < dim; ++d)
+                  properties[layout.to_surface() + d] = face.depth * face.normal[d];
             }
           particle_handler.insert_particle(x, reference, next_id++, cell,
                                             make_array_view(properties));

@@ -1132,11 +1132,9 @@ namespace sable::mpm
     const bool plural = n_lattice_disks > 1;
     pcout << "note: " << n_lattice_disks << (dim == 2 ? " disk" : " sphere") << (plural ? "s" : "")
           << " seeded on the lattice (the default Seeding): "
-          << (dim == 2 ? "the edge is a staircase; where it meets a box or mesh body its "
-                         "circle is located from its points and it rolls within 1% of a rigid "
-                         "disk (16 cells per diameter), but on a friction wall it rolls like a "
-                         "polygon (2-9% behind); Seeding = conforming follows the circle "
-                         "everywhere (within 0.4%)" :
+          << (dim == 2 ? "the edge is a staircase, which rolls like a polygon (16 cells per "
+                         "diameter, on a plane body or a friction wall: 4-13% behind a rigid "
+                         "disk); Seeding = conforming follows the circle (within 0.4%)" :
                          "the surface is a staircase; Seeding = conforming puts the points on "
                          "shells, which helps some rolling cases and not others")
           << " (doc/mpm.md, \"Seeding round bodies\")" << std::endl;

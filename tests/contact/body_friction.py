@@ -41,13 +41,10 @@
    +0.1%, spinning at 0.48 of the rigid omega R / v = 2 mu cos / (sin - mu
    cos) = 0.5, checked within 10%; the contact's moment on it about its
    centre, column contact0_1_mb, within 3% of the friction force times its
-   arm to the plane's surface, measured 1.003). Seeded on the lattice (the
-   default) it rolls within 3% too at 30 deg, 0.5 and at 20 deg, 0.3
-   (measured -0.36% and -0.56%): where it meets the plane's located face
-   its surface is located on its circle by its points' vectors to it.
-   Read from its centroids, the lattice's staircase edge met the plane a
-   cell ahead of the contact point and the disk hopped over it: it rolled
-   8.1% and 14.1% behind.
+   arm to the plane's surface, measured 1.003). Seeded on the lattice the
+   same disk rolls 8.1% and 4.1% behind (and slides +0.07%): the lattice's
+   staircase edge meets the plane a cell ahead of the contact point and
+   the disk hops over it.
 4. The rolling disks of 3. at 8 cells per diameter: with the defaults they
    lag 4.8% and 4.4% (30 deg, 0.5 and 45 deg, 0.6); with 'Solver/Affine transfers'
    (GIMP and USL) checked within 1.5% of the rigid travel and with less
@@ -216,7 +213,7 @@ for dim in (2, 3):
           f"largest {asymmetry / 2:.1e} of the impact speed; they part at "
           f"{rows[-1]['body1_vx'] - rows[-1]['body0_vx']:.3f} m/s")
 
-def roll(name, theta, mu, cells_per_diameter=16, scheme={}, seeding="conforming"):
+def roll(name, theta, mu, cells_per_diameter=16, scheme={}):
     t = math.radians(theta)
     return run(name, dict({
         "Dimension": 2, "Gravity": f"{g * math.sin(t)}, {-g * math.cos(t)}", "Time/End time": 0.5,
@@ -226,7 +223,7 @@ def roll(name, theta, mu, cells_per_diameter=16, scheme={}, seeding="conforming"
         "Contact/Friction coefficient": mu, "Output/Statistics interval": 50,
     }, **scheme), [dict(elastic, Shape="box", **{"Lower corner": "0, 0", "Upper corner": "3, 0.1",
                                      "Lithostatic initial stress": "true"}),
-        dict(elastic, Shape="disk", Center="0.4, 0.3", Radius=0.2, Seeding=seeding,
+        dict(elastic, Shape="disk", Center="0.4, 0.3", Radius=0.2, Seeding="conforming",
              **{"Lithostatic initial stress": "true"})])[2]
 
 
@@ -261,13 +258,6 @@ for theta, mu in [(30, 0.5), (45, 0.6), (45, 0.2)]:
         friction = sum((r["body1_y"] - 0.1) * -r["contact0_1_fx"] for r in sliding)
         check(f"{what}: the contact moment on the disk within 3% of its friction times the arm",
               abs(moment / friction - 1) <= 0.03, f"moment / (friction x arm) = {moment / friction:.4f}")
-
-# seeded on the lattice (the default): the plane's located face meets the
-# disk's circle, located from its points' vectors to it, not its staircase
-for theta, mu in [(30, 0.5), (20, 0.3)]:
-    x, _ = travel(roll(f"roll_lattice_{theta}_{mu}", theta, mu, seeding="lattice"), theta, mu)
-    check(f"disk seeded on the lattice on a plane body, theta = {theta}, mu = {mu} (rolls): travel within "
-          "3% of the rigid disk's", abs(x - 1) <= 0.03, f"x / x_rigid = {x:.4f}")
 
 # 8 cells per diameter: the defaults lag, the affine transfers roll
 affine = {"Grid/Shape functions": "gimp", "Solver/Update scheme": "USL", "Solver/Affine transfers": "true"}

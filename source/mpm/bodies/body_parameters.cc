@@ -198,23 +198,6 @@ namespace sable::mpm
   }
 
   template <int dim>
-  Tensor<1, dim>
-  BodyParameters<dim>::to_lattice_circle(const Point<dim> &x, const double depth_limit) const
-  {
-    // a lattice disk's staircase of points meets a flat face a cell ahead
-    // of its contact point; the vectors to its circle locate its surface
-    // where it meets a located face (doc/mpm.md, "Detection"). Spheres
-    // carry none: A3's lattice sphere then rolled +15.5% at R/4
-    if (dim != 2 || shape != Shape::disk || seeding != Seeding::lattice)
-      return {};
-    const Tensor<1, dim> radial = x - center;
-    const double         r      = radial.norm();
-    if (r == 0 || radius - r > depth_limit)
-      return {};
-    return (radius - r) / r * radial;
-  }
-
-  template <int dim>
   Point<dim>
   BodyParameters<dim>::top_point(const Tensor<1, dim> &gravity) const
   {

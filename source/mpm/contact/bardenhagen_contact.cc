@@ -763,30 +763,14 @@ namespace sable::mpm
     // grid and the points' registration with it: on a face inclined to
     // the grid the centroid's offset varies from node to node along the
     // staircase of points
-    double     along    = between * normal;
-    double     touching = touching_tolerance * size;
-    const bool face_a   = surface_known(a);
-    const bool face_b   = surface_known(b);
-    // a lattice disk's circle, where it meets a located face: its
-    // staircase's centroids lie anywhere up to a spacing inside it, and
-    // the face met a step a cell ahead of the contact point (two disks
-    // keep their centroids: located circles touching with a gap of zero
-    // carried A4's waves late). Only with two or more points per cell
-    // along the normal: a disk of one point per cell dropped on a plane
-    // body gained 2.7% of its energy at its second impact
-    const auto resolved_circle = [&](const typename BodyFields<dim>::Record &r) {
-      return circle_known(r) && r.mass_spacing <= 0.5 * (1 + 1e-9) * size * r.mass;
-    };
-    if (face_a)
+    double along    = between * normal;
+    double touching = touching_tolerance * size;
+    if (surface_known(a))
       along += (centroid_a - a.mass_surface_point / a.mass_on_surface) * normal;
-    else if (face_b && resolved_circle(a))
-      along += (centroid_a - circle_point(a, normal)) * normal;
     else
       touching += surface_centroid_offset(a.mass_spacing / (a.mass * size)) * size;
-    if (face_b)
+    if (surface_known(b))
       along += (b.mass_surface_point / b.mass_on_surface - centroid_b) * normal;
-    else if (face_a && resolved_circle(b))
-      along += (circle_point(b, -normal) - centroid_b) * normal;
     else
       touching += surface_centroid_offset(b.mass_spacing / (b.mass * size)) * size;
     // apart, a sideways offset of the centroids beyond a quarter cell

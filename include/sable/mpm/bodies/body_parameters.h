@@ -131,12 +131,6 @@ namespace sable::mpm
     FaceBelow<dim>
     face_below(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
 
-    /// A disk seeded on the lattice (2D): the vector from @p x to its
-    /// circle along the radius, if @p x lies within @p depth_limit of it;
-    /// else, and for every other shape, zero.
-    Tensor<1, dim>
-    to_lattice_circle(const Point<dim> &x, const double depth_limit) const;
-
     /// The point of the shape lowest in the potential −g·x (where p = 0).
     Point<dim>
     top_point(const Tensor<1, dim> &gravity) const;

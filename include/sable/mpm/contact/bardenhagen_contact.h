@@ -388,28 +388,6 @@ namespace sable::mpm
       return on_one_face(r) && r.mass_on_surface >= 0.9 * r.mass;
     }
 
-    /// Whether @p r is a round body's record (a lattice disk's; no face
-    /// normal) nine tenths of whose mass carries the vector to its circle.
-    bool
-    circle_known(const typename BodyFields<dim>::Record &r) const
-    {
-      return r.mass_on_surface >= 0.9 * r.mass && r.mass_surface_normal.norm_square() == 0 &&
-             r.body < body_surface_radii.size() && std::isfinite(body_surface_radii[r.body]);
-    }
-
-    /// The point of @p r's circle near its node, out along @p outward:
-    /// its points' vectors to the circle end on an arc whose mean lies
-    /// inside the circle by the sagitta, R - sqrt(R^2 - var) with var
-    /// the ends' spread about their mean.
-    Tensor<1, dim>
-    circle_point(const typename BodyFields<dim>::Record &r, const Tensor<1, dim> &outward) const
-    {
-      const Tensor<1, dim> mean   = r.mass_surface_point / r.mass_on_surface;
-      const double         spread = std::max(r.mass_surface_spread / r.mass_on_surface - mean * mean, 0.);
-      const double         radius = body_surface_radii[r.body];
-      return mean + (radius - std::sqrt(std::max(radius * radius - spread, 0.))) * outward;
-    }
-
     /// With 'Detection = surface position': the gap between the surfaces
     /// of the bodies of @p a and @p b along @p normal (out of a).
     SurfaceGap

@@ -56,9 +56,6 @@ namespace sable::mpm
       Tensor<1, dim> mass_surface_point;
       /// sum_p m_p N over the same points
       double mass_on_surface;
-      /// sum_p m_p N |x_p + t_p|^2 over the same points: their spread
-      /// along a round surface, whose mean lies inside it by the sagitta
-      double mass_surface_spread;
       Tensor<1, dim>          old_velocity;
       Tensor<1, dim>          new_velocity;
       /// what the contact and the walls changed in new_velocity in the last

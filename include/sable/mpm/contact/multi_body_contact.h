@@ -145,10 +145,9 @@ namespace sable::mpm
                 }
               if (with_position && carries_surface)
                 {
-                  const Tensor<1, dim> end = shape.image_for_node(location, v) + to_surface;
-                  record.mass_surface_point += weight * end;
+                  record.mass_surface_point +=
+                    weight * (shape.image_for_node(location, v) + to_surface);
                   record.mass_on_surface += weight;
-                  record.mass_surface_spread += weight * (end * end);
                 }
               if (with_regression)
                 samples[fields.index_of(record)].push_back(
