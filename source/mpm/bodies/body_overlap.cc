@@ -38,15 +38,18 @@ namespace sable::mpm
             }
         if (shaped.empty())
           return;
-        // boxes the size of the median body, at most about 4 million
+        // boxes the size of the median body, at most four per body (a few
+        // small bodies beside a large one would otherwise fill millions of
+        // boxes with the large one)
         std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
-        size = std::max(sizes[sizes.size() / 2], 1e-12);
+        size                   = std::max(sizes[sizes.size() / 2], 1e-12);
+        const double max_boxes = std::max(64., 4. * shaped.size());
         for (;;)
           {
             double n_boxes = 1;
             for (unsigned int d = 0; d < dim; ++d)
               n_boxes *= std::ceil((upper[d] - lower[d]) / size) + 1;
-            if (n_boxes <= 4e6)
+            if (n_boxes <= max_boxes)
               break;
             size *= 2;
           }
