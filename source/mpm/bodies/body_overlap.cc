@@ -21,11 +21,12 @@ namespace sable::mpm
     public:
       explicit BodyBins(const std::vector<BodyParameters<dim>> &bodies)
       {
-        std::vector<double> sizes;
+        std::vector<unsigned int> shaped;
+        std::vector<double>       sizes;
         for (unsigned int b = 0; b < bodies.size(); ++b)
           if (bodies[b].shape != BodyParameters<dim>::Shape::points)
             {
-              const auto box = bodies[b].bounding_box();
+              const auto box     = bodies[b].bounding_box();
               double     largest = 0;
               for (unsigned int d = 0; d < dim; ++d)
                 {
@@ -44,25 +45,24 @@ namespace sable::mpm
         std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
         size                   = std::max(sizes[sizes.size() / 2], 1e-12);
         const double max_boxes = std::max(64., 4. * shaped.size());
-        for (;;)
+        for (;; size *= 2)
           {
             double n_boxes = 1;
             for (unsigned int d = 0; d < dim; ++d)
-              n_boxes *= std::ceil((upper[d] - lower[d]) / size) + 1;
+              {
+                count[d] = static_cast<unsigned int>(std::ceil((upper[d] - lower[d]) / size)) + 1;
+                n_boxes *= count[d];
+              }
             if (n_boxes <= max_boxes)
               break;
-            size *= 2;
           }
         std::size_t n_boxes = 1;
         for (unsigned int d = 0; d < dim; ++d)
-          {
-            count[d] = static_cast<unsigned int>(std::ceil((upper[d] - lower[d]) / size)) + 1;
-            n_boxes *= count[d];
-          }
+          n_boxes *= count[d];
         boxes.resize(n_boxes);
         for (const unsigned int b : shaped)
           {
-            const auto                   box = bodies[b].bounding_box();
+            const auto                    box = bodies[b].bounding_box();
             std::array<unsigned int, dim> first, last;
             for (unsigned int d = 0; d < dim; ++d)
               {
@@ -116,7 +116,6 @@ namespace sable::mpm
         return f;
       }
 
-      std::vector<unsigned int>              shaped;
       Point<dim>                             lower, upper;
       double                                 size = 1;
       std::array<unsigned int, dim>          count{};
@@ -133,6 +132,9 @@ namespace sable::mpm
                      const Periodicity<dim> &                periodicity,
                      const MPI_Comm                          communicator)
   {
+    // one body has nothing to overlap (the same on every rank)
+    if (bodies.size() < 2)
+      return;
     const BodyBins<dim>               bins(bodies);
     const std::vector<Tensor<1, dim>> shifts = periodicity.image_shifts();
 
@@ -153,19 +155,22 @@ namespace sable::mpm
         const unsigned int body    = static_cast<unsigned int>(props[layout.body]);
         const double       spacing = layout.seeding_spacing(props);
         for (const Tensor<1, dim> &shift : shifts)
-          for (const unsigned int other : bins.near(particle.get_location() + shift))
-            {
-              if (other == body)
-                continue;
-              const double depth = bodies[other].depth_inside(particle.get_location() + shift);
-              if (depth <= 0.25 * spacing)
-                continue;
-              Offence offence{{depth / spacing, double(body), double(other), depth, spacing}};
-              for (unsigned int d = 0; d < dim; ++d)
-                offence[5 + d] = particle.get_location()[d];
-              if (worse(offence, worst))
-                worst = offence;
-            }
+          {
+            const Point<dim> image = particle.get_location() + shift;
+            for (const unsigned int other : bins.near(image))
+              {
+                if (other == body)
+                  continue;
+                const double depth = bodies[other].depth_inside(image);
+                if (depth <= 0.25 * spacing)
+                  continue;
+                Offence offence{{depth / spacing, double(body), double(other), depth, spacing}};
+                for (unsigned int d = 0; d < dim; ++d)
+                  offence[5 + d] = particle.get_location()[d];
+                if (worse(offence, worst))
+                  worst = offence;
+              }
+          }
       }
 
     const std::vector<Offence> all = Utilities::MPI::all_gather(communicator, worst);
