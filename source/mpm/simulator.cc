@@ -1133,10 +1133,12 @@ namespace sable::mpm
     pcout << "note: " << n_lattice_disks << (dim == 2 ? " disk" : " sphere") << (plural ? "s" : "")
           << " seeded on the lattice (the default Seeding): "
           << (dim == 2 ? "the edge is a staircase, which rolls like a polygon (16 cells per "
-                         "diameter, on a plane body or a friction wall: 4-13% behind a rigid "
-                         "disk); Seeding = conforming follows the circle (within 0.4%)" :
-                         "the surface is a staircase; Seeding = conforming puts the points on "
-                         "shells, which helps some rolling cases and not others")
+                         "diameter, on a plane body or a friction wall: 3-14% behind a rigid "
+                         "disk); Seeding = clipped (the lattice clipped to the circle) or "
+                         "conforming follows the circle (within 1.4%)" :
+                         "the surface is a staircase; Seeding = clipped (the lattice clipped to "
+                         "the sphere) or conforming (shells) follows it, which helps some "
+                         "rolling cases and not others")
           << " (doc/mpm.md, \"Seeding round bodies\")" << std::endl;
   }
 

@@ -33,7 +33,8 @@ namespace sable::mpm
     {
       using Seeding = typename BodyParameters<dim>::Seeding;
       static const NamedChoice<Seeding> choice{{"lattice", Seeding::lattice},
-                                               {"conforming", Seeding::conforming}};
+                                               {"conforming", Seeding::conforming},
+                                               {"clipped", Seeding::clipped}};
       return choice;
     }
 
@@ -302,14 +303,17 @@ namespace sable::mpm
                       seedings<dim>().pattern(),
                       "Disk/sphere: 'lattice' puts the points on the grid's "
                       "sub-cell centres (their edge is a staircase within "
-                      "half a spacing of the surface); 'conforming' on "
+                      "half a spacing of the surface); 'clipped' on the same "
+                      "lattice, but each sub-cell the surface cuts carries "
+                      "the part inside it, at that part's centroid, so the "
+                      "mass follows the circle; 'conforming' on "
                       "rings (2D) or shells (3D) of equal spacing h/k "
                       "parallel to the surface (h the smallest cell the "
                       "body overlaps), the outermost half a spacing inside "
                       "it, as contact's surface estimate assumes. A disk "
                       "rolling on a plane body at 16 cells per diameter "
-                      "lags 8% seeded on the lattice, 0.2% conforming "
-                      "(doc/validation.md).");
+                      "lags 4-14% seeded on the lattice, within 0.3% "
+                      "clipped or conforming (doc/validation.md).");
     MaterialParameters::declare_parameters(prm);
     prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
     prm.declare_entry("Angular velocity",
@@ -401,7 +405,7 @@ namespace sable::mpm
                     "each component larger than the Lower corner's");
     check_input(seeding == Seeding::lattice || shape == Shape::disk,
                 path + "Seeding",
-                "conforming",
+                seedings<dim>().name(seeding),
                 "'lattice' unless Shape is disk or sphere");
     check_input(particles_per_direction >= 1 && particles_per_direction <= 4,
                 path + "Particles per cell direction",

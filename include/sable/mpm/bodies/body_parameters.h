@@ -32,8 +32,9 @@ namespace sable::mpm
     /// Where a disk's or sphere's points go.
     enum class Seeding
     {
-      lattice, ///< k^dim points per cell, at the centres of equal sub-cells
-      conforming ///< rings (2D) or shells (3D) parallel to the surface
+      lattice,    ///< k^dim points per cell, at the centres of equal sub-cells
+      conforming, ///< rings (2D) or shells (3D) parallel to the surface
+      clipped ///< the lattice, each sub-cell the surface cuts clipped to it
     };
     Seeding      seeding = Seeding::lattice;
     Point<dim>   center = {};
