@@ -23,10 +23,6 @@ namespace sable::mpm
     /// on a wedge to the staircase's mass gradient).
     constexpr double surface_layer = 2.;
     constexpr double edge_margin   = 1.;
-
-    /// The share of its sub-cell below which a clipped sub-cell's part
-    /// joins the cell's largest part (Seeding = clipped).
-    constexpr double clipped_sliver = 0.1;
   } // namespace
 
   template <int dim>
@@ -40,11 +36,15 @@ namespace sable::mpm
   {
     const OwnedCellStrip<dim> owned_cells(triangulation);
     const Periodicity<dim>    periodicity = Periodicity<dim>::of(triangulation);
-    // the grid's upper bounds (the coarse vertices are on every rank)
-    Point<dim> grid_upper = triangulation.get_vertices()[0];
+    // the grid's bounds (the coarse vertices are on every rank)
+    Point<dim> grid_lower = triangulation.get_vertices()[0];
+    Point<dim> grid_upper = grid_lower;
     for (const Point<dim> &v : triangulation.get_vertices())
       for (unsigned int d = 0; d < dim; ++d)
-        grid_upper[d] = std::max(grid_upper[d], v[d]);
+        {
+          grid_lower[d] = std::min(grid_lower[d], v[d]);
+          grid_upper[d] = std::max(grid_upper[d], v[d]);
+        }
     types::particle_index     next_id = 0;
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
@@ -172,98 +172,44 @@ namespace sable::mpm
             });
         };
 
-        // Seeding = clipped: each sub-cell of the cell carries the part of
-        // the disk or sphere inside it, at that part's centroid (inside the
-        // sub-cell, so in this cell); a whole sub-cell keeps the lattice's
-        // point. A sliver, below clipped_sliver of its sub-cell, joins the
-        // cell's largest part: alone its point would lie at the surface,
-        // which walls and bodies read from the nodes' mass centroids as if
-        // it were flat, and a disk resting on a wall on one node pushed
-        // such a point through it (A1 at 16 cells per diameter, 3 points
-        // per cell direction). A cell holding only a sliver seeds nothing.
-        const auto seed_clipped_cell = [&](const auto &      cell,
-                                           const Point<dim> &lower,
-                                           const Point<dim> &upper,
-                                           const Tensor<1, dim> &shift,
-                                           const double      sub_volume) {
-          std::vector<BallPart<dim>> parts(n_sub);
-          std::vector<Point<dim>>    lattice_points(n_sub);
-          unsigned int               largest = 0;
-          for (unsigned int i = 0; i < n_sub; ++i)
-            {
-              const Point<dim> reference = seeding_point<dim>(i, k);
-              Point<dim>       sub_lower, sub_upper;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  const double half    = 0.5 * (upper[d] - lower[d]) / k;
-                  lattice_points[i][d] = lower[d] + reference[d] * (upper[d] - lower[d]);
-                  sub_lower[d]         = lattice_points[i][d] - shift[d] - half;
-                  sub_upper[d]         = lattice_points[i][d] - shift[d] + half;
-                }
-              parts[i] = ball_part_in_box(body.center, body.radius, sub_lower, sub_upper);
-              // the whole sub-cell keeps the lattice's point exactly
-              if (parts[i].volume >= sub_volume * (1 - 1e-12))
-                parts[i] = {sub_volume, lattice_points[i] - shift};
-              if (parts[i].volume > parts[largest].volume)
-                largest = i;
-            }
-          BallPart<dim> &joined = parts[largest];
-          for (unsigned int i = 0; i < n_sub; ++i)
-            if (i != largest && parts[i].volume > 0 && parts[i].volume < clipped_sliver * sub_volume)
-              {
-                const double volume = joined.volume + parts[i].volume;
-                joined.centroid =
-                  Point<dim>((joined.volume * joined.centroid + parts[i].volume * parts[i].centroid) / volume);
-                joined.volume   = volume;
-                parts[i].volume = 0;
-              }
-          if (joined.volume < clipped_sliver * sub_volume)
-            return;
-          for (unsigned int i = 0; i < n_sub; ++i)
-            if (parts[i].volume > 0)
-              {
-                const Point<dim> x = parts[i].centroid + shift;
-                Point<dim>       reference;
-                for (unsigned int d = 0; d < dim; ++d)
-                  reference[d] = (x[d] - lower[d]) / (upper[d] - lower[d]);
-                add_point(cell, x, parts[i].centroid, reference, parts[i].volume, nullptr);
-              }
-        };
-
         if (body.shape == BodyParameters<dim>::Shape::points)
           {
             for (const Tensor<1, dim> &shift : shifts)
               seed_cloud(body.cloud, shift);
             continue;
           }
-        if (body.seeding == BodyParameters<dim>::Seeding::conforming)
+        if (body.seeding != BodyParameters<dim>::Seeding::lattice)
           {
-            // spacing h/k of the smallest cell the body overlaps, on every rank
-            double smallest = std::numeric_limits<double>::max();
+            // the smallest cell the body overlaps (its extent per
+            // direction), on every rank
+            Tensor<1, dim> smallest;
+            for (unsigned int d = 0; d < dim; ++d)
+              smallest[d] = std::numeric_limits<double>::max();
             for (const Tensor<1, dim> &shift : shifts)
               owned_cells.for_each_overlapping(shifted(box, shift), [&](const auto &strip_cell) {
                 for (unsigned int d = 0; d < dim; ++d)
-                  smallest = std::min(smallest, strip_cell.upper[d] - strip_cell.lower[d]);
+                  smallest[d] = std::min(smallest[d], strip_cell.upper[d] - strip_cell.lower[d]);
               });
-            smallest = Utilities::MPI::min(smallest, triangulation.get_communicator());
+            for (unsigned int d = 0; d < dim; ++d)
+              smallest[d] = Utilities::MPI::min(smallest[d], triangulation.get_communicator());
+            double spacing = smallest[0];
+            for (unsigned int d = 1; d < dim; ++d)
+              spacing = std::min(spacing, smallest[d]);
+            // clipped: the lattice of those cells, aligned with the grid
             const PointCloud<dim> cloud =
-              conforming_ball_points(body.center, body.radius, smallest / k);
+              body.seeding == BodyParameters<dim>::Seeding::conforming ?
+                conforming_ball_points(body.center, body.radius, spacing / k) :
+                clipped_ball_points(body.center, body.radius, grid_lower, smallest, k);
             for (const Tensor<1, dim> &shift : shifts)
               seed_cloud(cloud, shift);
             continue;
           }
 
-        const bool clipped = body.seeding == BodyParameters<dim>::Seeding::clipped;
         for (const Tensor<1, dim> &shift : shifts)
           owned_cells.for_each_overlapping(shifted(box, shift), [&](const auto &strip_cell) {
             const Point<dim> lower = strip_cell.lower;
             const Point<dim> upper = strip_cell.upper;
             const double sub_volume = strip_cell.cell->measure() / n_sub;
-            if (clipped)
-              {
-                seed_clipped_cell(strip_cell.cell, lower, upper, shift, sub_volume);
-                return;
-              }
             for (unsigned int i = 0; i < n_sub; ++i)
               {
                 const Point<dim> reference = seeding_point<dim>(i, k);
