@@ -86,13 +86,12 @@ namespace sable::mpm
     stick_everywhere(false);
     boundary_conditions.hold_moving_walls(false);
     // disks seeded conforming settle slowly on a floor or a body, and on
-    // a friction floor at 25.6 cells per diameter not in 40,000 steps;
-    // clipped ones may not settle on a body at the default tolerance
+    // a friction floor at 25.6 cells per diameter not in 40,000 steps
     // (doc/validation.md, "Disks at rest: lattice and conforming seeding")
-    const bool round_seeded_disks =
+    const bool conforming_disks =
       std::any_of(parameters.bodies.begin(), parameters.bodies.end(), [](const auto &body) {
         return body.shape == BodyParameters<dim>::Shape::disk &&
-               body.seeding != BodyParameters<dim>::Seeding::lattice;
+               body.seeding == BodyParameters<dim>::Seeding::conforming;
       });
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",
@@ -108,11 +107,10 @@ namespace sable::mpm
                   "a block on a slope by friction while it settles, 'Solver/Settling "
                   "friction = stick', or settle a disk under the part of gravity normal "
                   "to the slope, 'Solver/Settling gravity'" +
-                  (round_seeded_disks ?
-                     std::string("; disks seeded conforming or clipped may need over ten times "
-                                 "the steps of disks seeded on the lattice, or a larger "
-                                 "'Solver/Settling tolerance' (1e-6), and may not settle at all "
-                                 "(doc/mpm.md, \"Starting settled\")") :
+                  (conforming_disks ?
+                     std::string("; disks seeded conforming may need over ten times the steps of "
+                                 "disks seeded on the lattice, and on a friction floor may not "
+                                 "settle at all (doc/mpm.md, \"Starting settled\")") :
                      std::string()) +
                   ")");
     pcout << "Settled under gravity in " << n + 1 << " steps (" << state.time

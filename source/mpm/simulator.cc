@@ -1135,7 +1135,7 @@ namespace sable::mpm
           << (dim == 2 ? "the edge is a staircase, which rolls like a polygon (16 cells per "
                          "diameter, on a plane body or a friction wall: 3-14% behind a rigid "
                          "disk); Seeding = clipped (the lattice clipped to the circle) or "
-                         "conforming follows the circle (within 1.4%)" :
+                         "conforming follows the circle (within 1.8%)" :
                          "the surface is a staircase; Seeding = clipped (the lattice clipped to "
                          "the sphere) or conforming (shells) follows it, which helps some "
                          "rolling cases and not others")

@@ -305,15 +305,17 @@ namespace sable::mpm
                       "sub-cell centres (their edge is a staircase within "
                       "half a spacing of the surface); 'clipped' on the same "
                       "lattice, but each sub-cell the surface cuts carries "
-                      "the part inside it, at that part's centroid, so the "
-                      "mass follows the circle; 'conforming' on "
+                      "the part inside it, at that part's centroid (none "
+                      "shallower than a quarter spacing or smaller than a "
+                      "quarter sub-cell: such parts join their neighbours), "
+                      "so the mass follows the circle; 'conforming' on "
                       "rings (2D) or shells (3D) of equal spacing h/k "
                       "parallel to the surface (h the smallest cell the "
                       "body overlaps), the outermost half a spacing inside "
                       "it, as contact's surface estimate assumes. A disk "
                       "rolling on a plane body at 16 cells per diameter "
-                      "lags 4-14% seeded on the lattice, within 0.3% "
-                      "clipped or conforming (doc/validation.md).");
+                      "lags 4-14% seeded on the lattice, within 0.8% "
+                      "clipped, 0.3% conforming (doc/validation.md).");
     MaterialParameters::declare_parameters(prm);
     prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
     prm.declare_entry("Angular velocity",
