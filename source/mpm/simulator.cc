@@ -1123,6 +1123,23 @@ namespace sable::mpm
       friction_walls = friction_walls || boundary.type == BoundaryType::friction;
     if (!contact && !friction_walls)
       return;
+    // one point per cell direction: a disk that spins turns its spin into
+    // strain within a fraction of a second (doc/mpm.md, "Spinning bodies");
+    // said where gravity or a spin can make disks roll
+    unsigned int n_single_point_disks = 0;
+    for (const auto &body : parameters.bodies)
+      n_single_point_disks += body.shape == BodyParameters<dim>::Shape::disk &&
+                              body.particles_per_direction == 1 &&
+                              (parameters.gravity.norm() > 0 || body.angular_velocity.norm() > 0);
+    if (n_single_point_disks > 0)
+      pcout << "note: " << n_single_point_disks << (dim == 2 ? " disk" : " sphere")
+            << (n_single_point_disks > 1 ? "s" : "")
+            << " with one point per cell direction: a spinning or rolling disk turns its spin "
+               "into strain (a free disk at 16 cells per diameter stops turning within a second "
+               "and gains energy; rolling on a plane body or a friction wall it lags the rigid "
+               "disk by 30-70%); 'Particles per cell direction' = 2 or more keeps it (doc/mpm.md, "
+               "\"Spinning bodies\")"
+            << std::endl;
     unsigned int n_lattice_disks = 0;
     for (const auto &body : parameters.bodies)
       n_lattice_disks += body.shape == BodyParameters<dim>::Shape::disk &&

@@ -28,7 +28,10 @@ checked together with less than half GIMP's error (measured 0.9913 and
 1.0001).
 
 A disk seeded on the lattice (the default) next to a friction wall gets a
-note at the start of the run, one seeded conforming none."""
+note at the start of the run, one seeded conforming none. One seeded with a
+single point per cell direction under gravity gets another: its spin turns
+into strain (at 16 cells per diameter it rolls 30-70% behind the rigid
+disk in any seeding)."""
 import math
 from scene_test import *
 
@@ -116,4 +119,19 @@ for seeding in ("lattice", "conforming"):
     noted = "note: 1 disk seeded on the lattice" in output
     check(f"{seeding} seeding: the seeding note {'is' if seeding == 'lattice' else 'is not'} printed",
           noted == (seeding == "lattice"), output.splitlines()[1] if len(output.splitlines()) > 1 else output)
+# one point per cell direction: a rolling disk turns its spin into strain
+# (doc/mpm.md, "Spinning bodies"), and the run says so where gravity can
+# make it roll; with two points, or without gravity or spin, it does not
+for k, gravity in ((1, "0, -9.8"), (2, "0, -9.8"), (1, "0, 0")):
+    _, output, _ = run(f"single_point_note_{k}_{gravity[-1]}", {
+        "Dimension": 2, "Time/Maximum number of steps": 2, "Gravity": gravity,
+        "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1", "Grid/Subdivisions": "16, 8",
+        "Boundary conditions/Types": "2: friction",
+        "Boundary conditions/Friction coefficients": "2: 0.5",
+    }, [{"Shape": "disk", "Center": "1, 0.3", "Radius": 0.25, "Particles per cell direction": k,
+         "Bulk modulus": 1e7, "Shear modulus": 2.5e6, "Density": 3000}])
+    noted = "with one point per cell direction" in output
+    expected = k == 1 and gravity != "0, 0"
+    check(f"{k} point(s) per cell direction, gravity {gravity}: the note on one point per cell "
+          f"{'is' if expected else 'is not'} printed", noted == expected)
 finish()

@@ -326,8 +326,9 @@ namespace sable::mpm
     /// flatter body'.
     void
     set_contact_body_shapes();
-    /// Console note where disks (spheres) seeded on the lattice meet
-    /// contact: their staircase surface rolls like a polygon.
+    /// Console notes where disks (spheres) meet contact: seeded on the
+    /// lattice, their staircase surface rolls like a polygon; with one
+    /// point per cell direction, their spin turns into strain.
     void
     print_seeding_note() const;
     /// Particle output, with the contact nodes and the grid if asked for.
