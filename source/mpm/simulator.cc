@@ -1134,10 +1134,15 @@ namespace sable::mpm
     if (n_single_point_disks > 0)
       pcout << "note: " << n_single_point_disks << (dim == 2 ? " disk" : " sphere")
             << (n_single_point_disks > 1 ? "s" : "")
-            << " with one point per cell direction: a spinning or rolling disk turns its spin "
-               "into strain (a free disk at 16 cells per diameter stops turning within a second "
-               "and gains energy; rolling on a plane body or a friction wall it lags the rigid "
-               "disk by 30-70%); 'Particles per cell direction' = 2 or more keeps it (doc/mpm.md, "
+            << " with one point per cell direction: "
+            << (dim == 2 ? "a spinning or rolling disk turns its spin into strain (a free disk at "
+                           "16 cells per diameter stops turning within a second and gains energy; "
+                           "rolling on a plane body or a friction wall it lags the rigid disk by "
+                           "30-70%)" :
+                           "a spinning or rolling sphere turns its spin into strain (a free sphere "
+                           "at 16 cells per diameter stops turning within a second and gains "
+                           "energy)")
+            << "; 'Particles per cell direction' = 2 or more keeps it (doc/mpm.md, "
                "\"Spinning bodies\")"
             << std::endl;
     unsigned int n_lattice_disks = 0;

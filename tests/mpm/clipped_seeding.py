@@ -25,8 +25,7 @@ larger neighbour at their common centroid.
    centroids, however shallow) a point passed through the friction wall at
    0.94 s and stopped the run; now it runs to the end with every point and
    the disk's travel within 1% of the rigid one's (measured +0.1%).
-3. No seeding note (the lattice's staircase note) for a clipped disk at a
-   friction wall."""
+(Test `rolling_disk` checks that a clipped disk gets no staircase note.)"""
 import math
 
 from scene_test import *
@@ -101,12 +100,4 @@ check("A1 sliding at 16 cells per diameter, 3x3 points, clipped: runs to 1 s wit
       code == 0 and abs(rows[-1]["time"] - 1.0) < 1e-12 and rows[-1]["particles"] == rows[0]["particles"]
       and abs(travel - 1) <= 0.01, f"exit {code}, x / x_rigid = {travel:.4f}" if code == 0 else output[-300:])
 
-# no staircase note for a clipped disk
-_, output, _ = run("seeding_note", {
-    "Dimension": 2, "Time/Maximum number of steps": 2,
-    "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1", "Grid/Subdivisions": "16, 8",
-    "Boundary conditions/Types": "2: friction", "Boundary conditions/Friction coefficients": "2: 0.5",
-}, [{"Shape": "disk", "Center": "1, 0.3", "Radius": 0.25, "Seeding": "clipped",
-     "Bulk modulus": 1e7, "Shear modulus": 2.5e6, "Density": 3000}])
-check("a clipped disk at a friction wall gets no seeding note", "seeded on the lattice" not in output)
 finish()

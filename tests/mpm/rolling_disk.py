@@ -28,7 +28,7 @@ checked together with less than half GIMP's error (measured 0.9913 and
 1.0001).
 
 A disk seeded on the lattice (the default) next to a friction wall gets a
-note at the start of the run, one seeded conforming none. One seeded with a
+note at the start of the run, one seeded conforming or clipped none. One seeded with a
 single point per cell direction under gravity gets another: its spin turns
 into strain (at 16 cells per diameter it rolls 30-70% behind the rigid
 disk in any seeding)."""
@@ -106,16 +106,22 @@ for name, kwargs in (("A1 pi/6, mu 0.5", dict()),
     check(f"{label}: less than half the error of GIMP without them",
           abs(x_affine - 1) < 0.5 * abs(x_gimp - 1), f"{x_affine - 1:+.4f} against {x_gimp - 1:+.4f}")
 
-# a disk seeded on the lattice that meets a friction wall gets a note at the
-# start (its staircase edge rolls like a polygon); seeded conforming, none
-for seeding in ("lattice", "conforming"):
-    _, output, _ = run(f"seeding_note_{seeding}", {
-        "Dimension": 2, "Time/Maximum number of steps": 2,
+def start_output(name, gravity="0, 0", **disk):
+    """What two steps of a disk at a friction wall print."""
+    return run(name, {
+        "Dimension": 2, "Time/Maximum number of steps": 2, "Gravity": gravity,
         "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1", "Grid/Subdivisions": "16, 8",
         "Boundary conditions/Types": "2: friction",
         "Boundary conditions/Friction coefficients": "2: 0.5",
-    }, [{"Shape": "disk", "Center": "1, 0.3", "Radius": 0.25, "Seeding": seeding,
-         "Bulk modulus": 1e7, "Shear modulus": 2.5e6, "Density": 3000}])
+    }, [dict({"Shape": "disk", "Center": "1, 0.3", "Radius": 0.25,
+              "Bulk modulus": 1e7, "Shear modulus": 2.5e6, "Density": 3000}, **disk)])[1]
+
+
+# a disk seeded on the lattice that meets a friction wall gets a note at the
+# start (its staircase edge rolls like a polygon); seeded conforming or
+# clipped, none
+for seeding in ("lattice", "conforming", "clipped"):
+    output = start_output(f"seeding_note_{seeding}", Seeding=seeding)
     noted = "note: 1 disk seeded on the lattice" in output
     check(f"{seeding} seeding: the seeding note {'is' if seeding == 'lattice' else 'is not'} printed",
           noted == (seeding == "lattice"), output.splitlines()[1] if len(output.splitlines()) > 1 else output)
@@ -123,13 +129,8 @@ for seeding in ("lattice", "conforming"):
 # (doc/mpm.md, "Spinning bodies"), and the run says so where gravity can
 # make it roll; with two points, or without gravity or spin, it does not
 for k, gravity in ((1, "0, -9.8"), (2, "0, -9.8"), (1, "0, 0")):
-    _, output, _ = run(f"single_point_note_{k}_{gravity[-1]}", {
-        "Dimension": 2, "Time/Maximum number of steps": 2, "Gravity": gravity,
-        "Grid/Lower corner": "0, 0", "Grid/Upper corner": "2, 1", "Grid/Subdivisions": "16, 8",
-        "Boundary conditions/Types": "2: friction",
-        "Boundary conditions/Friction coefficients": "2: 0.5",
-    }, [{"Shape": "disk", "Center": "1, 0.3", "Radius": 0.25, "Particles per cell direction": k,
-         "Bulk modulus": 1e7, "Shear modulus": 2.5e6, "Density": 3000}])
+    output = start_output(f"single_point_note_{k}_{gravity[-1]}", gravity,
+                          **{"Particles per cell direction": k})
     noted = "with one point per cell direction" in output
     expected = k == 1 and gravity != "0, 0"
     check(f"{k} point(s) per cell direction, gravity {gravity}: the note on one point per cell "

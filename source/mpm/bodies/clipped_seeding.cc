@@ -82,18 +82,33 @@ namespace sable::mpm
                       const Tensor<1, dim> &cell,
                       const unsigned int    k)
   {
-    PointCloud<dim> cloud;
-    const auto      depth = [&](const Point<dim> &x) { return radius - x.distance(centre); };
-    double          spacing = std::numeric_limits<double>::max();
+    const auto depth   = [&](const Point<dim> &x) { return radius - x.distance(centre); };
+    double     spacing = std::numeric_limits<double>::max();
+    double     sub_volume = 1;
     for (unsigned int d = 0; d < dim; ++d)
-      spacing = std::min(spacing, cell[d] / k);
+      {
+        spacing = std::min(spacing, cell[d] / k);
+        sub_volume *= cell[d] / k;
+      }
     // no point shallower than a quarter spacing: walls and bodies read the
     // surface from the nodes' mass centroids as if it were flat, which on a
     // round body puts it a little high, and a point at the surface of a
     // disk on a friction wall was pushed through it (A1 at 16 cells per
     // diameter, 3 points per cell direction)
     const double least_depth = 0.25 * spacing;
-    // the cells the ball's bounding box overlaps
+    // no point under a quarter of a sub-cell's volume: FLIP's velocity
+    // updates from nodes that little mass reaches sent such points off at
+    // up to 240 m/s in a settling pile (6 cells per diameter)
+    const double least_volume = 0.25 * sub_volume;
+    // @p from joins @p into at their common centroid (and is left empty)
+    const auto join = [](BallPart<dim> &into, BallPart<dim> &from) {
+      const double volume = into.volume + from.volume;
+      into.centroid = Point<dim>((into.volume * into.centroid + from.volume * from.centroid) / volume);
+      into.volume   = volume;
+      from.volume   = 0;
+    };
+
+    // the cells the ball's bounding box overlaps, numbered along x first
     std::array<int, dim> first, count;
     unsigned int         n_cells = 1;
     for (unsigned int d = 0; d < dim; ++d)
@@ -102,97 +117,76 @@ namespace sable::mpm
         count[d] = static_cast<int>(std::floor((centre[d] + radius - origin[d]) / cell[d])) - first[d] + 1;
         n_cells *= count[d];
       }
+    const auto cell_index = [&](unsigned int c) {
+      std::array<int, dim> index;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          index[d] = c % count[d];
+          c /= count[d];
+        }
+      return index;
+    };
     unsigned int n_sub = 1;
     for (unsigned int d = 0; d < dim; ++d)
       n_sub *= k;
+
+    // each cell's parts; a part shallower than the least depth joins the
+    // deepest part of its cell, moved in along the radius if that one is
+    // still shallower (a cell the surface barely enters)
+    std::vector<BallPart<dim>> points;
+    // the points of cell c: cell_begin[c] .. cell_begin[c + 1]
+    std::vector<unsigned int>  cell_begin(n_cells + 1, 0);
     std::vector<BallPart<dim>> parts(n_sub);
-    // the points of each cell, in cell order: cell_begin[c] .. cell_begin[c + 1]
-    std::vector<unsigned int> cell_begin(n_cells + 1, 0);
     for (unsigned int c = 0; c < n_cells; ++c)
       {
-        cell_begin[c] = cloud.positions.size();
-        Point<dim>   lower;
-        unsigned int rest = c;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            lower[d] = origin[d] + (first[d] + static_cast<int>(rest % count[d])) * cell[d];
-            rest /= count[d];
-          }
-        unsigned int deepest = n_sub;
+        const std::array<int, dim> index = cell_index(c);
+        unsigned int               deepest = n_sub;
         for (unsigned int i = 0; i < n_sub; ++i)
           {
             Point<dim>   sub_lower, sub_upper;
             unsigned int sub = i;
             for (unsigned int d = 0; d < dim; ++d)
               {
-                sub_lower[d] = lower[d] + (sub % k) * cell[d] / k;
+                sub_lower[d] = origin[d] + (first[d] + index[d]) * cell[d] + (sub % k) * cell[d] / k;
                 sub_upper[d] = sub_lower[d] + cell[d] / k;
                 sub /= k;
               }
             parts[i] = ball_part_in_box(centre, radius, sub_lower, sub_upper);
-            double whole = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              whole *= sub_upper[d] - sub_lower[d];
             // a whole sub-cell keeps the lattice's point, its centre
-            if (parts[i].volume >= whole * (1 - 1e-12))
-              parts[i] = {whole, Point<dim>(0.5 * (sub_lower + sub_upper))};
+            if (parts[i].volume >= sub_volume * (1 - 1e-12))
+              parts[i] = {sub_volume, Point<dim>(0.5 * (sub_lower + sub_upper))};
             if (parts[i].volume > 0 &&
                 (deepest == n_sub || depth(parts[i].centroid) > depth(parts[deepest].centroid)))
               deepest = i;
           }
-        if (deepest == n_sub)
+        if (deepest < n_sub)
           {
-            cell_begin[c + 1] = cloud.positions.size();
-            continue;
+            for (unsigned int i = 0; i < n_sub; ++i)
+              if (i != deepest && parts[i].volume > 0 && depth(parts[i].centroid) < least_depth)
+                join(parts[deepest], parts[i]);
+            BallPart<dim> &joined = parts[deepest];
+            if (depth(joined.centroid) < least_depth)
+              {
+                const Tensor<1, dim> out = joined.centroid - centre;
+                joined.centroid          = centre + (radius - least_depth) / out.norm() * out;
+              }
+            for (const BallPart<dim> &part : parts)
+              if (part.volume > 0)
+                points.push_back(part);
           }
-        BallPart<dim> &joined = parts[deepest];
-        for (unsigned int i = 0; i < n_sub; ++i)
-          if (i != deepest && parts[i].volume > 0 && depth(parts[i].centroid) < least_depth)
-            {
-              const double volume = joined.volume + parts[i].volume;
-              joined.centroid =
-                Point<dim>((joined.volume * joined.centroid + parts[i].volume * parts[i].centroid) / volume);
-              joined.volume   = volume;
-              parts[i].volume = 0;
-            }
-        if (depth(joined.centroid) < least_depth)
-          {
-            const Tensor<1, dim> out = joined.centroid - centre;
-            joined.centroid          = centre + (radius - least_depth) / out.norm() * out;
-          }
-        for (unsigned int i = 0; i < n_sub; ++i)
-          if (parts[i].volume > 0)
-            {
-              cloud.positions.push_back(parts[i].centroid);
-              cloud.volumes.push_back(parts[i].volume);
-            }
-        cell_begin[c + 1] = cloud.positions.size();
+        cell_begin[c + 1] = points.size();
       }
 
-    // a point under a quarter of a sub-cell's volume (a cell the surface
-    // barely enters) joins the nearest larger point of its cell or the
-    // cells beside it, at their common centroid: alone, FLIP's velocity
-    // updates from nodes that little mass reaches sent such points off at
-    // up to 240 m/s in a settling pile (6 cells per diameter)
-    double sub_volume = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      sub_volume *= cell[d] / k;
-    const double      least_volume = 0.25 * sub_volume;
-    std::vector<bool> joined_away(cloud.positions.size(), false);
+    // a point under the least volume joins the nearest larger point of its
+    // cell or the cells beside it
     for (unsigned int c = 0; c < n_cells; ++c)
       for (unsigned int p = cell_begin[c]; p < cell_begin[c + 1]; ++p)
         {
-          if (cloud.volumes[p] >= least_volume)
+          if (points[p].volume >= least_volume)
             continue;
-          std::array<int, dim> index;
-          unsigned int         rest = c;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              index[d] = rest % count[d];
-              rest /= count[d];
-            }
-          unsigned int nearest  = numbers::invalid_unsigned_int;
-          double       distance = std::numeric_limits<double>::max();
+          const std::array<int, dim> index    = cell_index(c);
+          unsigned int               nearest  = numbers::invalid_unsigned_int;
+          double                     distance = std::numeric_limits<double>::max();
           for (unsigned int n = 0; n < Utilities::pow(3u, dim); ++n)
             {
               unsigned int neighbour = 0, stride = 1, code = n;
@@ -208,30 +202,25 @@ namespace sable::mpm
               if (!inside)
                 continue;
               for (unsigned int q = cell_begin[neighbour]; q < cell_begin[neighbour + 1]; ++q)
-                if (cloud.volumes[q] >= least_volume && !joined_away[q] &&
-                    cloud.positions[q].distance(cloud.positions[p]) < distance)
+                if (points[q].volume >= least_volume &&
+                    points[q].centroid.distance(points[p].centroid) < distance)
                   {
                     nearest  = q;
-                    distance = cloud.positions[q].distance(cloud.positions[p]);
+                    distance = points[q].centroid.distance(points[p].centroid);
                   }
             }
-          if (nearest == numbers::invalid_unsigned_int)
-            continue;
-          const double volume = cloud.volumes[nearest] + cloud.volumes[p];
-          cloud.positions[nearest] =
-            Point<dim>((cloud.volumes[nearest] * cloud.positions[nearest] + cloud.volumes[p] * cloud.positions[p]) /
-                       volume);
-          cloud.volumes[nearest] = volume;
-          joined_away[p]         = true;
+          if (nearest != numbers::invalid_unsigned_int)
+            join(points[nearest], points[p]);
         }
-    PointCloud<dim> kept;
-    for (unsigned int p = 0; p < cloud.positions.size(); ++p)
-      if (!joined_away[p])
+
+    PointCloud<dim> cloud;
+    for (const BallPart<dim> &point : points)
+      if (point.volume > 0)
         {
-          kept.positions.push_back(cloud.positions[p]);
-          kept.volumes.push_back(cloud.volumes[p]);
+          cloud.positions.push_back(point.centroid);
+          cloud.volumes.push_back(point.volume);
         }
-    return kept;
+    return cloud;
   }
 
   template BallPart<2>
