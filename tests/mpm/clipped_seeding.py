@@ -25,6 +25,18 @@ larger neighbour at their common centroid.
    centroids, however shallow) a point passed through the friction wall at
    0.94 s and stopped the run; now it runs to the end with every point and
    the disk's travel within 1% of the rigid one's (measured +0.1%).
+3. A disk resting on a friction floor (the grain of test `adaptive_mesh`,
+   R = 0.2 m, K = 1 MPa, G = 0.5 MPa, on a grid twice as fine: 25.6 cells
+   per diameter; released from a column's stress and settled by kinetic
+   damping): how far its centre of mass sinks, in units of
+   delta = rho g (2R)^2 / (2 (K + 4G/3)), the compression of a column of
+   its height. There is no closed form for a disk under its own weight;
+   the same scene converges to 3.0 delta (clipped and conforming from
+   above, 51.2 to 204.8 cells per diameter, measured 2.86-3.08 delta; the
+   lattice from below, 2.60 delta at 204.8; doc/validation.md, "Resting on
+   a floor: how far a disk sinks"). Clipped and conforming within 10% of
+   3.0 delta (measured +3.7% and +6.0%); the lattice, whose bottom row is
+   a flat staircase several cells wide, sinks 1.64 delta (-45%), printed.
 (Test `rolling_disk` checks that a clipped disk gets no staircase note.)"""
 import math
 
@@ -99,5 +111,26 @@ travel = (rows[-1]["body0_x"] - rows[0]["body0_x"]) / (0.5 * a * rows[-1]["time"
 check("A1 sliding at 16 cells per diameter, 3x3 points, clipped: runs to 1 s with every point, travel within 1%",
       code == 0 and abs(rows[-1]["time"] - 1.0) < 1e-12 and rows[-1]["particles"] == rows[0]["particles"]
       and abs(travel - 1) <= 0.01, f"exit {code}, x / x_rigid = {travel:.4f}" if code == 0 else output[-300:])
+
+
+# a disk resting on a friction floor: the settlement against the converged one
+K, G = 1e6, 5e5
+delta = rho * g * (2 * 0.2) ** 2 / (2 * (K + 4 * G / 3))
+floor = {"Dimension": 2, "Gravity": f"0, {-g}", "Time/Maximum number of steps": 1,
+         "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 0.5", "Grid/Subdivisions": "64, 32",
+         "Boundary conditions/Types": "2: friction", "Boundary conditions/Friction coefficients": "2: 0.5"}
+for seeding in ("clipped", "conforming", "lattice"):
+    grain = {"Shape": "disk", "Center": "0.5, 0.2", "Radius": 0.2, "Seeding": seeding, "Density": rho,
+             "Bulk modulus": K, "Shear modulus": G, "Lithostatic initial stress": "true"}
+    _, _, seeded = run(f"rest_seeded_{seeding}", floor, [grain])
+    _, _, settled = run(f"rest_settled_{seeding}", dict(floor, **{"Solver/Settling steps": 20000,
+                                                                 "Solver/Settling tolerance": 1e-6}), [grain])
+    sink = (seeded[0]["body0_y"] - settled[0]["body0_y"]) / delta
+    if seeding == "lattice":
+        print(f"[info] resting on a friction floor, lattice: sinks {sink:.2f} delta ({sink / 3 - 1:+.1%} "
+              f"against the converged 3.0 delta)")
+    else:
+        check(f"resting on a friction floor, {seeding}: sinks within 10% of the converged 3.0 delta",
+              abs(sink / 3 - 1) <= 0.1, f"{sink:.2f} delta ({sink / 3 - 1:+.1%})")
 
 finish()
