@@ -315,7 +315,10 @@ namespace sable::mpm
                       "it, as contact's surface estimate assumes. A disk "
                       "rolling on a plane body at 16 cells per diameter "
                       "lags 4-14% seeded on the lattice, within 0.8% "
-                      "clipped, 0.3% conforming (doc/validation.md).");
+                      "clipped, 0.3% conforming; resting on a floor, a "
+                      "lattice disk or sphere sinks about half as far as "
+                      "the converged one at 12.8 cells per diameter, clipped "
+                      "or conforming 13-21% further (doc/validation.md).");
     MaterialParameters::declare_parameters(prm);
     prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
     prm.declare_entry("Angular velocity",
