@@ -1156,11 +1156,17 @@ namespace sable::mpm
           << " seeded on the lattice (the default Seeding): "
           << (dim == 2 ? "the edge is a staircase, which rolls like a polygon (16 cells per "
                          "diameter, on a plane body or a friction wall: 3-14% behind a rigid "
-                         "disk); Seeding = clipped (the lattice clipped to the circle) or "
-                         "conforming follows the circle (within 1.8%)" :
-                         "the surface is a staircase; Seeding = clipped (the lattice clipped to "
-                         "the sphere) or conforming (shells) follows it, which helps some "
-                         "rolling cases and not others")
+                         "disk) and rests like a flat punch (on a floor it sinks about half "
+                         "as far as the converged disk at 12.8-25.6 cells per diameter); "
+                         "Seeding = clipped (the lattice clipped to the circle) or "
+                         "conforming follows the circle (rolling within 1.8%, resting within "
+                         "6% at 25.6)" :
+                         "the surface is a staircase, which rests like a flat punch (on a "
+                         "floor it sinks about half as far as the converged sphere at 12.8 "
+                         "cells per diameter); Seeding = clipped (the lattice clipped to "
+                         "the sphere) or conforming (shells) follows it, which sinks within "
+                         "13% of the converged sphere and helps some rolling cases and not "
+                         "others")
           << " (doc/mpm.md, \"Seeding round bodies\")" << std::endl;
   }
 
