@@ -1164,9 +1164,9 @@ namespace sable::mpm
                          "the surface is a staircase, which rests like a flat punch (on a "
                          "floor it sinks about half as far as the converged sphere at 12.8 "
                          "cells per diameter); Seeding = clipped (the lattice clipped to "
-                         "the sphere) or conforming (shells) follows it, which sinks within "
-                         "13% of the converged sphere and helps some rolling cases and not "
-                         "others")
+                         "the sphere) or conforming (shells) follows it, which sinks about "
+                         "13% further than the converged sphere and helps some rolling cases "
+                         "and not others")
           << " (doc/mpm.md, \"Seeding round bodies\")" << std::endl;
   }
 
