@@ -178,7 +178,7 @@ namespace sable::mpm
               seed_cloud(body.cloud, shift);
             continue;
           }
-        if (body.seeding != BodyParameters<dim>::Seeding::lattice)
+        if (body.seeding_used() != BodyParameters<dim>::Seeding::lattice)
           {
             // the smallest cell the body overlaps (its extent per
             // direction), on every rank
@@ -197,7 +197,7 @@ namespace sable::mpm
               spacing = std::min(spacing, smallest[d]);
             // clipped: the lattice of those cells, aligned with the grid
             const PointCloud<dim> cloud =
-              body.seeding == BodyParameters<dim>::Seeding::conforming ?
+              body.seeding_used() == BodyParameters<dim>::Seeding::conforming ?
                 conforming_ball_points(body.center, body.radius, spacing / k) :
                 clipped_ball_points(body.center, body.radius, grid_lower, smallest, k);
             for (const Tensor<1, dim> &shift : shifts)

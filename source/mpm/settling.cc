@@ -91,7 +91,7 @@ namespace sable::mpm
     const bool conforming_disks =
       std::any_of(parameters.bodies.begin(), parameters.bodies.end(), [](const auto &body) {
         return body.shape == BodyParameters<dim>::Shape::disk &&
-               body.seeding == BodyParameters<dim>::Seeding::conforming;
+               body.seeding_used() == BodyParameters<dim>::Seeding::conforming;
       });
     check_input(n < parameters.settling_steps,
                 "Solver/Settling steps",

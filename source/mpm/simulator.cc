@@ -1148,23 +1148,23 @@ namespace sable::mpm
     unsigned int n_lattice_disks = 0;
     for (const auto &body : parameters.bodies)
       n_lattice_disks += body.shape == BodyParameters<dim>::Shape::disk &&
-                         body.seeding == BodyParameters<dim>::Seeding::lattice;
+                         body.seeding_used() == BodyParameters<dim>::Seeding::lattice;
     if (n_lattice_disks == 0)
       return;
     const bool plural = n_lattice_disks > 1;
     pcout << "note: " << n_lattice_disks << (dim == 2 ? " disk" : " sphere") << (plural ? "s" : "")
-          << " seeded on the lattice (the default Seeding): "
+          << " seeded on the lattice (Seeding = lattice): "
           << (dim == 2 ? "the edge is a staircase, which rolls like a polygon (16 cells per "
                          "diameter, on a plane body or a friction wall: 3-14% behind a rigid "
                          "disk) and rests like a flat punch (on a floor it sinks about half "
                          "as far as the converged disk at 12.8-25.6 cells per diameter); "
-                         "Seeding = clipped (the lattice clipped to the circle) or "
-                         "conforming follows the circle (rolling within 1.8%, resting within "
+                         "Seeding = automatic or clipped (the lattice clipped to the circle) "
+                         "or conforming follows the circle (rolling within 1.8%, resting within "
                          "6% at 25.6)" :
                          "the surface is a staircase, which rests like a flat punch (on a "
                          "floor it sinks about half as far as the converged sphere at 12.8 "
-                         "cells per diameter); Seeding = clipped (the lattice clipped to "
-                         "the sphere) or conforming (shells) follows it, which sinks about "
+                         "cells per diameter); Seeding = automatic or clipped (the lattice "
+                         "clipped to the sphere) or conforming (shells) follows it, which sinks about "
                          "13% further than the converged sphere and helps some rolling cases "
                          "and not others")
           << " (doc/mpm.md, \"Seeding round bodies\")" << std::endl;

@@ -9,7 +9,8 @@ centroid to 1e-12), rotation is about its centroid (zero momentum);
 placed off the lattice, the points are exactly those an independent test of
 the L finds, and their volume is the L's area within the band the lattice
 cannot resolve. A 256-gon of triangles and quadrilaterals (a mixed mesh)
-seeds exactly the points of the built-in disk it approximates, on 1 and 2
+seeds exactly the points of the built-in disk it approximates (seeded on
+the lattice), on 1 and 2
 ranks, and on a grid refined around body surfaces gets the disk's cells. 3D: the unit cube as 8 hexahedra, as 8 hexahedra with a displaced
 centre vertex (warped inner faces) and as 6 tetrahedra, scaled and moved
 off the lattice, seeds exactly the points of the built-in box; so does the
@@ -138,7 +139,8 @@ polygon += "".join(f"{i + 1} {x!r} {y!r} 0\n" for i, (x, y) in enumerate(nodes))
 polygon += "$EndNodes\n$Elements\n%d\n" % len(elements)
 polygon += "".join(f"{e + 1} {t} 2 1 1 " + " ".join(map(str, v)) + "\n" for e, (t, v) in enumerate(elements))
 polygon += "$EndElements\n"
-disk = dict(material, Shape="disk", Center=f"{centre[0]}, {centre[1]}", Radius=radius, Velocity="1, 0")
+disk = dict(material, Shape="disk", Center=f"{centre[0]}, {centre[1]}", Radius=radius, Velocity="1, 0",
+            Seeding="lattice")
 expected = run("polygon_builtin_disk", scene(2, N), [disk])[2][0]
 for ranks in (0, 2):
     what = f"256-gon, {max(ranks, 1)} rank(s)"

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Bodies from a points file (Shape = points): a CSV of the points the
-built-in disk seeds (sub-cell centres of a 20 x 20 grid within the radius,
+built-in disk seeds on the lattice (Seeding = lattice: sub-cell centres of a 20 x 20 grid within the radius,
 each with a quarter of a cell's area) gives the same number of points,
 mass (momentum at 1 m/s) and centre of mass as the disk itself, to 1e-12
 relative (sums of the same numbers in another order), on 1 and 2 ranks; a
@@ -28,7 +28,7 @@ scene = {"Dimension": 2, "Gravity": "0, 0", "Time/End time": 1e-3, "Time/Maximum
          "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 1", "Grid/Subdivisions": f"{N}, {N}"}
 material = {"Young's modulus": 1e6, "Poisson's ratio": 0.3, "Density": 1000, "Velocity": "1, 0"}
 disk = dict(material, **{"Shape": "disk", "Center": f"{centre[0]}, {centre[1]}", "Radius": radius,
-                         "Particles per cell direction": K})
+                         "Particles per cell direction": K, "Seeding": "lattice"})
 
 
 def write_points(name, text):

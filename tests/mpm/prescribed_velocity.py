@@ -53,7 +53,10 @@ worst = max(abs(r["body1_vx"] + V) + abs(r["body1_vy"]) for r in after)
 check("pin velocity exactly the prescribed one after it", worst <= 1e-14 * V, f"largest deviation {worst:.3g} m/s")
 travel = rows[-1]["body1_x"] - rows[0]["body1_x"]
 expected = -V * sum(r["dt"] for r in after)
-check_relative("pin travel = V x (time since the start)", travel, expected, 1e-12)
+# each step adds v dt to positions of about 0.014 m, rounding each by about
+# 1e-18 m: over the run's few hundred steps some 1e-16 m, 1e-11 of the
+# 2e-5 m travel
+check_relative("pin travel = V x (time since the start)", travel, expected, 1e-10)
 
 # momentum: the disk's equals the impulse the pin gave it
 pin_mass = 1900 * 0.002 * 0.002  # the box fills whole cells: its points' mass exactly

@@ -18,7 +18,7 @@
 //  - the same over the whole run: P_N = P_0 + M g t_N (1e-12 of S);
 //  - each body's mass (compute_statistics().body_mass) equals
 //    density x (number of its particles) x (cell volume / ppd^dim), the
-//    seeding rule, at every step (1e-12: the seeding uses the measure of
+//    lattice's seeding rule (the disk is seeded on the lattice), at every step (1e-12: the seeding uses the measure of
 //    each cell, whose vertices i/n are not exact binary fractions, ~1e-15,
 //    plus summation round-off), and its value before the first step:
 //    particle masses never change, only the summation order may (moving
@@ -142,6 +142,8 @@ namespace
       disk.center[d] = 0.5;
     disk.center[0] = 0.35;
     disk.particles_per_direction = 2;
+    // equal points: the seeding rule's masses below
+    disk.seeding = BodyParameters<dim>::Seeding::lattice;
     disk.material.model          = "linear elastic";
     disk.material.density        = 1000.;
     disk.material.set_young_poisson(1e5, 0.3);

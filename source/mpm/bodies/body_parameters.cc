@@ -32,7 +32,8 @@ namespace sable::mpm
     seedings()
     {
       using Seeding = typename BodyParameters<dim>::Seeding;
-      static const NamedChoice<Seeding> choice{{"lattice", Seeding::lattice},
+      static const NamedChoice<Seeding> choice{{"automatic", Seeding::automatic},
+                                               {"lattice", Seeding::lattice},
                                                {"conforming", Seeding::conforming},
                                                {"clipped", Seeding::clipped}};
       return choice;
@@ -299,26 +300,27 @@ namespace sable::mpm
                       "k in 1..4: k^dim material points per cell, at the "
                       "centres of equal sub-cells.");
     prm.declare_entry("Seeding",
-                      "lattice",
+                      "automatic",
                       seedings<dim>().pattern(),
-                      "Disk/sphere: 'lattice' puts the points on the grid's "
-                      "sub-cell centres (their edge is a staircase within "
-                      "half a spacing of the surface); 'clipped' on the same "
-                      "lattice, but each sub-cell the surface cuts carries "
-                      "the part inside it, at that part's centroid (none "
-                      "shallower than a quarter spacing or smaller than a "
-                      "quarter sub-cell: such parts join their neighbours), "
-                      "so the mass follows the circle; 'conforming' on "
-                      "rings (2D) or shells (3D) of equal spacing h/k "
-                      "parallel to the surface (h the smallest cell the "
-                      "body overlaps), the outermost half a spacing inside "
-                      "it, as contact's surface estimate assumes. A disk "
-                      "rolling on a plane body at 16 cells per diameter "
-                      "lags 4-14% seeded on the lattice, within 0.8% "
-                      "clipped, 0.3% conforming; resting on a floor, a "
-                      "lattice disk or sphere sinks about half as far as "
-                      "the converged one at 12.8 cells per diameter, clipped "
-                      "or conforming 13-21% further (doc/validation.md).");
+                      "'automatic': clipped for a disk or sphere, the lattice "
+                      "for every other shape. Disk/sphere: 'lattice' puts the "
+                      "points on the grid's sub-cell centres (their edge is a "
+                      "staircase within half a spacing of the surface); "
+                      "'clipped' on the same lattice, but each sub-cell the "
+                      "surface cuts carries the part inside it, at that "
+                      "part's centroid (none shallower than a quarter "
+                      "spacing or smaller than a quarter sub-cell: such "
+                      "parts join their neighbours), so the mass follows the "
+                      "circle; 'conforming' on rings (2D) or shells (3D) of "
+                      "equal spacing h/k parallel to the surface (h the "
+                      "smallest cell the body overlaps), the outermost half "
+                      "a spacing inside it, as contact's surface estimate "
+                      "assumes. A disk rolling on a plane body at 16 cells "
+                      "per diameter lags 4-14% seeded on the lattice, within "
+                      "0.8% clipped, 0.3% conforming; resting on a floor, a "
+                      "lattice disk or sphere sinks about half as far as the "
+                      "converged one at 12.8 cells per diameter, clipped or "
+                      "conforming 13-21% further (doc/validation.md).");
     MaterialParameters::declare_parameters(prm);
     prm.declare_entry("Velocity", zero, Patterns::List(Patterns::Double(), dim, dim), "Initial velocity, m/s.");
     prm.declare_entry("Angular velocity",
@@ -408,10 +410,11 @@ namespace sable::mpm
                     path + "Upper corner",
                     upper_corner,
                     "each component larger than the Lower corner's");
-    check_input(seeding == Seeding::lattice || shape == Shape::disk,
+    check_input(seeding == Seeding::automatic || seeding == Seeding::lattice ||
+                  shape == Shape::disk,
                 path + "Seeding",
                 seedings<dim>().name(seeding),
-                "'lattice' unless Shape is disk or sphere");
+                "'automatic' or 'lattice' unless Shape is disk or sphere");
     check_input(particles_per_direction >= 1 && particles_per_direction <= 4,
                 path + "Particles per cell direction",
                 particles_per_direction,

@@ -32,11 +32,20 @@ namespace sable::mpm
     /// Where a disk's or sphere's points go.
     enum class Seeding
     {
+      automatic,  ///< clipped for disks and spheres, the lattice for the rest
       lattice,    ///< k^dim points per cell, at the centres of equal sub-cells
       conforming, ///< rings (2D) or shells (3D) parallel to the surface
       clipped ///< the lattice, each sub-cell the surface cuts clipped to it
     };
-    Seeding      seeding = Seeding::lattice;
+    Seeding      seeding = Seeding::automatic;
+    /// The seeding the body's points get: 'automatic' resolved by the shape
+    Seeding
+    seeding_used() const
+    {
+      if (seeding != Seeding::automatic)
+        return seeding;
+      return shape == Shape::disk ? Seeding::clipped : Seeding::lattice;
+    }
     Point<dim>   center = {};
     double       radius = 0.;
     Point<dim>   lower_corner = {};
