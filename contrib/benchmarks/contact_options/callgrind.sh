@@ -5,8 +5,9 @@
 # cell) in a square lattice, each touching its neighbours, on a fixed floor
 # under gravity, 2D, MUSL, one thread, output off, 20 steps (or the number
 # given). Variants: the defaults, each contact option changed alone, the
-# update schemes USL and USAVG, the disks seeded conforming, the floor a friction wall (either contact
-# criterion), the GIMP functions (with MUSL, with USL, with USL and the
+# update schemes USL and USAVG, the disks seeded conforming or on the
+# lattice (the default seeds them clipped), the floor a friction wall
+# (either contact criterion), the GIMP functions (with MUSL, with USL, with USL and the
 # affine transfers), and contact 'none' (one velocity field: the
 # single-field step).
 # Prints the instructions of Simulator::advance() (the steps) per variant
@@ -70,6 +71,7 @@ variants=("defaults|"
           "Update scheme = USL|||| subsection Solver\n  set Update scheme = USL\nend"
           "Update scheme = USAVG|||| subsection Solver\n  set Update scheme = USAVG\nend"
           "Seeding = conforming||  set Seeding = conforming"
+          "Seeding = lattice||  set Seeding = lattice"
           "floor: friction wall, surface position|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3"
           "floor: friction wall, material|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3\n  set Friction wall contact = material"
           "Shape functions = gimp|||| subsection Grid\n  set Shape functions = gimp\nend"
