@@ -44,6 +44,9 @@ larger neighbour at their common centroid.
    applied far from the contact rather than spread through the body).
    Clipped within 20% of it (measured +13%; +17% for the disk at this
    resolution); the lattice sinks 4.8 delta (-51%), printed.
+The default, 'Seeding = automatic', seeds disks and spheres exactly as
+'clipped' (the same points and mass, bit for bit) and a box on the
+lattice; 'clipped' for a box stops the run naming the entry.
 (Test `rolling_disk` checks that a clipped disk gets no staircase note.)"""
 import math
 
@@ -88,11 +91,31 @@ for dim, cells, radius, centre in [(2, 40, 0.2, (0.5123, 0.4571)), (3, 20, 0.2, 
     if dim == 2:
         check("2D clipped disk: centre of mass within 3e-3 cells of the centre", shift <= 3e-3,
               f"{shift:.1e} cells (lattice {max(abs(c - x) for c, x in zip(results['lattice'][1], centre)) / h:.1e})")
+    # the default, 'automatic', is clipped for disks and spheres
+    mass_d, com_d, points_d = measure(f"mass_{dim}d_automatic", dim, "automatic", centre, radius, cells)
+    check(f"{dim}D {body} seeded by default ('automatic'): the clipped points, mass and centre of mass",
+          points_d == points and mass_d == mass and com_d == com,
+          f"{points_d:.0f} points against {points:.0f}, mass {mass_d / mass - 1:+.1e}")
     mass2, com2, points2 = measure(f"mass_{dim}d_clipped_mpi2", dim, "clipped", centre, radius, cells, ranks=2)
     check(f"{dim}D clipped {body} on two ranks: the same points, mass and centre of mass to 1e-12",
           points2 == points and abs(mass2 / mass - 1) <= 1e-12
           and max(abs(a - b) for a, b in zip(com, com2)) <= 1e-12,
           f"{points2:.0f} points, mass {mass2 / mass - 1:+.1e}")
+
+# 'automatic' seeds a box on the lattice; 'clipped' is refused for it
+box_scene = {"Dimension": 2, "Gravity": "0, 0", "Time/Maximum number of steps": 1,
+             "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 1", "Grid/Subdivisions": "10, 10"}
+box = dict(material, Shape="box", **{"Lower corner": "0.2, 0.2", "Upper corner": "0.5, 0.4"})
+_, _, lattice_rows = run("box_lattice", box_scene, [dict(box, Seeding="lattice")])
+_, _, automatic_rows = run("box_automatic", box_scene, [dict(box, Seeding="automatic")])
+check("a box seeded by default ('automatic'): the lattice's points and mass",
+      automatic_rows[0]["particles"] == lattice_rows[0]["particles"] == 24
+      and automatic_rows[0]["momentum_x"] == lattice_rows[0]["momentum_x"],
+      f"{automatic_rows[0]['particles']:.0f} points")
+code, output, _ = run("box_clipped", box_scene, [dict(box, Seeding="clipped")], expect_success=False)
+check("a box seeded clipped: refused, naming the entry and the choices it allows",
+      code != 0 and "Body 0/Seeding" in output and "'automatic' or 'lattice' unless Shape is disk or sphere" in output,
+      output.strip().splitlines()[-1] if output.strip() else "(no output)")
 
 # a disk across the periodic face x = 0 (its centre at x = 0.0623): the
 # parts seeded on both sides are those of the disk moved into the grid
