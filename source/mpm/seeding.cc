@@ -137,8 +137,16 @@ namespace sable::mpm
 
         // each point of a cloud, moved by @p shift, in the one owned cell
         // holding it (cells half open, closed at the grid's upper bounds);
-        // points sorted by x to find a cell's in a slab
-        const auto seed_cloud = [&](const PointCloud<dim> &cloud, const Tensor<1, dim> &shift) {
+        // points sorted by x to find a cell's in a slab. With
+        // @p lattice_in_whole_cells, a cell the cloud's points fill
+        // whole (their volumes sum to the cell's) and larger than
+        // @p smallest gets the lattice of its own size instead: a clipped
+        // body on an adapted grid keeps the fine spacing where its surface
+        // cuts the cells and the cells' own inside
+        const auto seed_cloud = [&](const PointCloud<dim> &cloud,
+                                    const Tensor<1, dim> & shift,
+                                    const bool             lattice_in_whole_cells = false,
+                                    const Tensor<1, dim> & smallest = Tensor<1, dim>()) {
             std::vector<unsigned int> order(cloud.positions.size());
             std::iota(order.begin(), order.end(), 0u);
             std::sort(order.begin(), order.end(), [&](const unsigned int i, const unsigned int j) {
@@ -158,6 +166,29 @@ namespace sable::mpm
                                         [&](const unsigned int p, const double value) {
                                           return cloud.positions[p][0] < value;
                                         });
+              bool coarser = false;
+              for (unsigned int d = 0; d < dim; ++d)
+                coarser = coarser || upper[d] - lower[d] > smallest[d] * (1 + 1e-9);
+              if (lattice_in_whole_cells && coarser)
+                {
+                  const double measure = strip_cell.cell->measure();
+                  double       filled  = 0;
+                  for (auto j = i; j != order.end() && cloud.positions[*j][0] <= upper[0]; ++j)
+                    if (inside(cloud.positions[*j]))
+                      filled += cloud.volumes[*j];
+                  if (std::abs(filled - measure) <= 1e-10 * measure)
+                    {
+                      for (unsigned int p = 0; p < n_sub; ++p)
+                        {
+                          const Point<dim> reference = seeding_point<dim>(p, k);
+                          Point<dim>       x;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
+                          add_point(strip_cell.cell, x + shift, x, reference, measure / n_sub, nullptr);
+                        }
+                      return;
+                    }
+                }
               for (; i != order.end() && cloud.positions[*i][0] <= upper[0]; ++i)
                 {
                   const Point<dim> &x = cloud.positions[*i];
@@ -200,8 +231,9 @@ namespace sable::mpm
               body.seeding_used() == BodyParameters<dim>::Seeding::conforming ?
                 conforming_ball_points(body.center, body.radius, spacing / k) :
                 clipped_ball_points(body.center, body.radius, grid_lower, smallest, k);
+            const bool clipped = body.seeding_used() == BodyParameters<dim>::Seeding::clipped;
             for (const Tensor<1, dim> &shift : shifts)
-              seed_cloud(cloud, shift);
+              seed_cloud(cloud, shift, clipped, smallest);
             continue;
           }
 

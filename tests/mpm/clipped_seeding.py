@@ -44,6 +44,11 @@ larger neighbour at their common centroid.
    applied far from the contact rather than spread through the body).
    Clipped within 20% of it (measured +13%; +17% for the disk at this
    resolution); the lattice sinks 4.8 delta (-51%), printed.
+On a grid refined around its surface (4 cells per diameter coarse, 16
+at the surface) the clipped disk takes the fine spacing in the cells its
+surface cuts and each whole coarse cell inside it takes its own lattice:
+its mass within 2e-5 of rho pi R^2 as on a uniform grid, on 1 and 2 ranks,
+with fewer points than the fine spacing throughout.
 The default, 'Seeding = automatic', seeds disks and spheres exactly as
 'clipped' (the same points and mass, bit for bit) and a box on the
 lattice; 'clipped' for a box stops the run naming the entry.
@@ -101,6 +106,24 @@ for dim, cells, radius, centre in [(2, 40, 0.2, (0.5123, 0.4571)), (3, 20, 0.2, 
           points2 == points and abs(mass2 / mass - 1) <= 1e-12
           and max(abs(a - b) for a, b in zip(com, com2)) <= 1e-12,
           f"{points2:.0f} points, mass {mass2 / mass - 1:+.1e}")
+
+# on a grid refined around the disk's surface (4 cells per diameter
+# coarse, 16 at the surface): the cut cells at the fine spacing, each whole
+# coarse cell inside on its own lattice; the mass kept as on a uniform grid
+adapted = {"Dimension": 2, "Gravity": "0, 0", "Time/Maximum number of steps": 1,
+           "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 1", "Grid/Subdivisions": "10, 10",
+           "Mesh refinement/Criteria": "body surface", "Mesh refinement/Maximum level": 2}
+disk = dict(material, Shape="disk", Radius=0.2, Center="0.5123, 0.4571", **{"Particles per cell direction": 2})
+exact = rho * math.pi * 0.2 ** 2
+_, _, fine_rows = run("adapted_uniform_fine", dict(adapted, **{"Grid/Subdivisions": "40, 40",
+                                                             "Mesh refinement/Criteria": ""}), [disk])
+for ranks in (0, 2):
+    _, _, rows = run(f"adapted_np{max(ranks, 1)}", adapted, [disk], ranks=ranks)
+    mass, points = rows[0]["momentum_x"], rows[0]["particles"]
+    check(f"clipped disk on a grid refined at its surface, {max(ranks, 1)} rank(s): mass within 2e-5 of "
+          "rho pi R^2, fewer points than at the fine spacing throughout",
+          abs(mass / exact - 1) <= 2e-5 and points < fine_rows[0]["particles"],
+          f"{mass / exact - 1:+.1e}, {points:.0f} points against {fine_rows[0]['particles']:.0f}")
 
 # 'automatic' seeds a box on the lattice; 'clipped' is refused for it
 box_scene = {"Dimension": 2, "Gravity": "0, 0", "Time/Maximum number of steps": 1,
