@@ -135,6 +135,26 @@ namespace sable::mpm
                                             make_array_view(properties));
         };
 
+        // the lattice of one owned cell: its k^dim sub-cell centres that
+        // the body, moved by @p shift, holds (all of them where
+        // @p whole_cell)
+        const auto seed_cell_lattice = [&](const auto &           strip_cell,
+                                           const Tensor<1, dim> &shift,
+                                           const bool            whole_cell) {
+          const Point<dim> lower      = strip_cell.lower;
+          const Point<dim> upper      = strip_cell.upper;
+          const double     sub_volume = strip_cell.cell->measure() / n_sub;
+          for (unsigned int i = 0; i < n_sub; ++i)
+            {
+              const Point<dim> reference = seeding_point<dim>(i, k);
+              Point<dim>       x;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
+              if (whole_cell || body.contains(x - shift))
+                add_point(strip_cell.cell, x, x - shift, reference, sub_volume, nullptr);
+            }
+        };
+
         // each point of a cloud, moved by @p shift, in the one owned cell
         // holding it (cells half open, closed at the grid's upper bounds);
         // points sorted by x to find a cell's in a slab. With
@@ -166,10 +186,13 @@ namespace sable::mpm
                                         [&](const unsigned int p, const double value) {
                                           return cloud.positions[p][0] < value;
                                         });
-              bool coarser = false;
-              for (unsigned int d = 0; d < dim; ++d)
-                coarser = coarser || upper[d] - lower[d] > smallest[d] * (1 + 1e-9);
-              if (lattice_in_whole_cells && coarser)
+              const auto coarser = [&]() {
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (upper[d] - lower[d] > smallest[d] * (1 + 1e-9))
+                    return true;
+                return false;
+              };
+              if (lattice_in_whole_cells && coarser())
                 {
                   const double measure = strip_cell.cell->measure();
                   double       filled  = 0;
@@ -178,14 +201,7 @@ namespace sable::mpm
                       filled += cloud.volumes[*j];
                   if (std::abs(filled - measure) <= 1e-10 * measure)
                     {
-                      for (unsigned int p = 0; p < n_sub; ++p)
-                        {
-                          const Point<dim> reference = seeding_point<dim>(p, k);
-                          Point<dim>       x;
-                          for (unsigned int d = 0; d < dim; ++d)
-                            x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
-                          add_point(strip_cell.cell, x + shift, x, reference, measure / n_sub, nullptr);
-                        }
+                      seed_cell_lattice(strip_cell, shift, true);
                       return;
                     }
                 }
@@ -239,18 +255,7 @@ namespace sable::mpm
 
         for (const Tensor<1, dim> &shift : shifts)
           owned_cells.for_each_overlapping(shifted(box, shift), [&](const auto &strip_cell) {
-            const Point<dim> lower = strip_cell.lower;
-            const Point<dim> upper = strip_cell.upper;
-            const double sub_volume = strip_cell.cell->measure() / n_sub;
-            for (unsigned int i = 0; i < n_sub; ++i)
-              {
-                const Point<dim> reference = seeding_point<dim>(i, k);
-                Point<dim>       x;
-                for (unsigned int d = 0; d < dim; ++d)
-                  x[d] = lower[d] + reference[d] * (upper[d] - lower[d]);
-                if (body.contains(x - shift))
-                  add_point(strip_cell.cell, x, x - shift, reference, sub_volume, nullptr);
-              }
+            seed_cell_lattice(strip_cell, shift, false);
           });
       }
     // ids unique over all ranks: offset by the points of the lower ranks
