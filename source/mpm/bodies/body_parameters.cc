@@ -166,12 +166,8 @@ namespace sable::mpm
     FaceBelow<dim> face;
     // a disk's or sphere's points carry none: their mass gradient is
     // already the radial direction up to the lattice's staircase (carried
-    // radial normals let unequal disks gain 1.7% energy head-on). Nor do
-    // they carry vectors to their circle: a conforming disk rolling on a
-    // wedge then lagged more (-1.5 to -4.7% at 20-45 degrees), and lattice
-    // disks rolled within 0.9% but A3 came out +15.5% at R/4 and A4's
-    // waves lost their arrivals (doc/validation.md, "Rolling and sliding
-    // disks")
+    // radial normals let unequal disks gain 1.7% energy head-on); they
+    // carry their vectors to the circle instead (to_round_surface())
     if (shape == Shape::box)
       {
         // the nearest face, unless a face of another axis is within
@@ -197,6 +193,20 @@ namespace sable::mpm
     else if (shape == Shape::mesh)
       face = mesh.face_below(x, depth_limit, edge_margin);
     return face;
+  }
+
+  template <int dim>
+  Tensor<1, dim>
+  BodyParameters<dim>::to_round_surface(const Point<dim> &x, const double depth_limit) const
+  {
+    if (shape != Shape::disk)
+      return {};
+    const Tensor<1, dim> radial   = x - center;
+    const double         distance = radial.norm();
+    const double         depth    = radius - distance;
+    if (distance == 0 || depth < 0 || depth > depth_limit)
+      return {};
+    return (depth / distance) * radial;
   }
 
   template <int dim>

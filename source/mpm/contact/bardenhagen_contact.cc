@@ -763,13 +763,20 @@ namespace sable::mpm
     // grid and the points' registration with it: on a face inclined to
     // the grid the centroid's offset varies from node to node along the
     // staircase of points
-    double along    = between * normal;
-    double touching = touching_tolerance * size;
-    if (surface_known(a))
+    //
+    // a round body's surface is located so only against a face: two round
+    // bodies touch at a point, and the nodes beside it see their surfaces
+    // curve apart; with the centroids' offsets, which take each node to
+    // lie on the surface, they meet within a tenth of a cell there, as
+    // the papers' shared nodes let them (A4's waves cross the contacts)
+    const bool faces = on_one_face(a) || on_one_face(b);
+    double     along    = between * normal;
+    double     touching = touching_tolerance * size;
+    if (surface_known(a) && faces)
       along += (centroid_a - a.mass_surface_point / a.mass_on_surface) * normal;
     else
       touching += surface_centroid_offset(a.mass_spacing / (a.mass * size)) * size;
-    if (surface_known(b))
+    if (surface_known(b) && faces)
       along += (b.mass_surface_point / b.mass_on_surface - centroid_b) * normal;
     else
       touching += surface_centroid_offset(b.mass_spacing / (b.mass * size)) * size;

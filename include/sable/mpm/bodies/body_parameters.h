@@ -141,6 +141,12 @@ namespace sable::mpm
     FaceBelow<dim>
     face_below(const Point<dim> &x, const double depth_limit, const double edge_margin) const;
 
+    /// A disk's or sphere's vector from @p x to the nearest point of its
+    /// surface, if @p x lies inside within @p depth_limit of it; zero
+    /// otherwise and for every other shape.
+    Tensor<1, dim>
+    to_round_surface(const Point<dim> &x, const double depth_limit) const;
+
     /// The point of the shape lowest in the potential −g·x (where p = 0).
     Point<dim>
     top_point(const Tensor<1, dim> &gravity) const;

@@ -385,7 +385,7 @@ namespace sable::mpm
     static bool
     surface_known(const typename BodyFields<dim>::Record &r)
     {
-      return on_one_face(r) && r.mass_on_surface >= 0.9 * r.mass;
+      return (on_one_face(r) || r.mass_surface == 0) && r.mass_on_surface >= 0.9 * r.mass;
     }
 
     /// With 'Detection = surface position': the gap between the surfaces

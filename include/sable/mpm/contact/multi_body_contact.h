@@ -119,7 +119,10 @@ namespace sable::mpm
       if (pass == GridPass::momentum_update && with_position && layout.to_surface_stored)
         to_surface = ParticleLayout<dim>::deformation_gradient(properties) *
                      layout.reference_to_surface(properties);
-      const bool carries_surface = to_surface.norm_square() > 0;
+      // a point on its face carries the zero vector
+      const bool carries_surface =
+        pass == GridPass::momentum_update && with_position && layout.to_surface_stored &&
+        (carries_normal || to_surface.norm_square() > 0);
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {
           if (!fields.is_contact_node(shape.nodes[v]))
