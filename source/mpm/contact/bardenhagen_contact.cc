@@ -770,13 +770,18 @@ namespace sable::mpm
     // lie on the surface, they meet within a tenth of a cell there, as
     // the papers' shared nodes let them (A4's waves cross the contacts)
     const bool faces = on_one_face(a) || on_one_face(b);
-    double     along    = between * normal;
-    double     touching = touching_tolerance * size;
-    if (surface_known(a) && faces)
+    const bool locate_round =
+      parameters.round_surfaces == ContactParameters::RoundSurfaces::located;
+    const auto located = [&](const typename BodyFields<dim>::Record &r) {
+      return surface_known(r) && faces && (r.mass_surface > 0 || locate_round);
+    };
+    double along    = between * normal;
+    double touching = touching_tolerance * size;
+    if (located(a))
       along += (centroid_a - a.mass_surface_point / a.mass_on_surface) * normal;
     else
       touching += surface_centroid_offset(a.mass_spacing / (a.mass * size)) * size;
-    if (surface_known(b) && faces)
+    if (located(b))
       along += (b.mass_surface_point / b.mass_on_surface - centroid_b) * normal;
     else
       touching += surface_centroid_offset(b.mass_spacing / (b.mass * size)) * size;

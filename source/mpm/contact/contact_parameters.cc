@@ -24,6 +24,9 @@ namespace sable::mpm
     const NamedChoice<ContactParameters::Detection> detections{
       {"shared nodes", ContactParameters::Detection::shared_nodes},
       {"surface position", ContactParameters::Detection::surface_position}};
+    const NamedChoice<ContactParameters::RoundSurfaces> round_surface_choices{
+      {"located", ContactParameters::RoundSurfaces::located},
+      {"centroid offset", ContactParameters::RoundSurfaces::centroid_offset}};
     const NamedChoice<ContactParameters::MultiBodyNodes> multi_body_methods{
       {"pairwise", ContactParameters::MultiBodyNodes::pairwise},
       {"centre of mass", ContactParameters::MultiBodyNodes::centre_of_mass}};
@@ -99,6 +102,22 @@ namespace sable::mpm
                       "distance between the bodies' mass centroids at the "
                       "node, along the normal, shows that their surfaces "
                       "meet within the step (see doc/mpm.md).");
+    prm.declare_entry("Round body surfaces",
+                      "located",
+                      round_surface_choices.pattern(),
+                      "With 'surface position': where a disk's or sphere's "
+                      "surface lies at a node where it meets a box's or mesh "
+                      "body's face. 'located': where its points' vectors to "
+                      "its surface end, as the face's: contact at touch at "
+                      "any registration of the face with the grid (a disk "
+                      "rolls within 3% of the rigid one at 16 cells per "
+                      "diameter), but a disk set at rest on a body creeps, "
+                      "by up to a sixth of a cell in 0.5 s. 'centroid "
+                      "offset': from its points' centroid at the node, taken "
+                      "to lie on the surface: rests quietly, rolls 5-9% "
+                      "behind with the face between grid lines (see "
+                      "doc/validation.md). Between two round bodies the "
+                      "centroid offset is used either way.");
     prm.declare_entry("Nodes with three or more bodies",
                       "pairwise",
                       multi_body_methods.pattern(),
@@ -146,6 +165,7 @@ namespace sable::mpm
     c.model                 = models.value(prm.get("Model"));
     c.normals               = normal_methods.value(prm.get("Normals"));
     c.detection             = detections.value(prm.get("Detection"));
+    c.round_surfaces        = round_surface_choices.value(prm.get("Round body surfaces"));
     c.multi_body_nodes = multi_body_methods.value(prm.get("Nodes with three or more bodies"));
     c.friction = parse_friction(prm.get("Friction coefficient"), "Contact/Friction coefficient");
     for (const auto &[pair, value] : split_map(prm.get("Group friction")))

@@ -69,6 +69,17 @@ namespace sable::mpm
       surface_position
     };
     Detection detection = Detection::surface_position;
+    /// Where a disk's or sphere's surface is taken to lie at a node where
+    /// it meets a flat face, with surface-position detection.
+    enum class RoundSurfaces
+    {
+      /// where its points' vectors to its circle end (the face's is found
+      /// so too): contact at touch at any registration with the grid
+      located,
+      /// the centroid's offset, the node taken to lie on the surface
+      centroid_offset
+    };
+    RoundSurfaces round_surfaces = RoundSurfaces::located;
     /// Contact at nodes that three or more bodies share.
     enum class MultiBodyNodes
     {
