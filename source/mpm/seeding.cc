@@ -130,13 +130,15 @@ namespace sable::mpm
               // a disk's or sphere's points carry their vector to its
               // circle without a normal (the mass gradient gives a round
               // body's normal)
-              const Tensor<1, dim> to_surface =
-                body.shape == BodyParameters<dim>::Shape::disk ?
-                  body.to_round_surface(x_body, surface_layer * cell) :
-                  face.depth * face.normal;
               if (layout.to_surface_stored)
-                for (unsigned int d = 0; d < dim; ++d)
-                  properties[layout.to_surface() + d] = to_surface[d];
+                {
+                  const Tensor<1, dim> to_surface =
+                    body.shape == BodyParameters<dim>::Shape::disk ?
+                      body.to_round_surface(x_body, surface_layer * cell) :
+                      face.depth * face.normal;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    properties[layout.to_surface() + d] = to_surface[d];
+                }
             }
           particle_handler.insert_particle(x, reference, next_id++, cell,
                                             make_array_view(properties));

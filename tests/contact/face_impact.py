@@ -18,7 +18,9 @@ t = 0.025 s. Checked, issue targets for head-on collisions:
 - the collision does not depend on the registration: the restitution at
   the three offsets within 0.02 of each other (measured 0.847-0.857; with
   the centroids' offsets 0.742-0.810).
-Momentum is checked to round-off by test energy_balance and multi_body_nodes.
+Momentum is checked to round-off where a round body meets a face by test
+a2_a3 (a sphere thrown onto a free plate) and at nodes of three or more
+bodies by multi_body_nodes.
 """
 import os
 import sys

@@ -765,10 +765,10 @@ namespace sable::mpm
     // staircase of points
     //
     // a round body's surface is located so only against a face: two round
-    // bodies touch at a point, and the nodes beside it see their surfaces
-    // curve apart; with the centroids' offsets, which take each node to
-    // lie on the surface, they meet within a tenth of a cell there, as
-    // the papers' shared nodes let them (A4's waves cross the contacts)
+    // bodies touch at a point, and the nodes beside it see their located
+    // surfaces curve apart and hold nothing until the bodies overlap (the
+    // A4 chain's disks flew apart); the centroids' offsets, which take
+    // each node to lie on the surface, let those nodes act
     const bool faces = on_one_face(a) || on_one_face(b);
     const bool locate_round =
       parameters.round_surfaces == ContactParameters::RoundSurfaces::located;

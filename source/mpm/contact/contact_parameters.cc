@@ -114,7 +114,7 @@ namespace sable::mpm
                       "diameter), but a disk set at rest on a body creeps, "
                       "by up to a sixth of a cell in 0.5 s. 'centroid "
                       "offset': from its points' centroid at the node, taken "
-                      "to lie on the surface: rests quietly, rolls 5-9% "
+                      "to lie on the surface: rests quietly, rolls up to 9% "
                       "behind with the face between grid lines (see "
                       "doc/validation.md). Between two round bodies the "
                       "centroid offset is used either way.");

@@ -115,14 +115,15 @@ namespace sable::mpm
         surface_normal = body_rotations[body] * surface_normal;
       // the vector to the body's surface, carried by the material's
       // deformation (F turns and stretches it with the point)
+      const bool     surface_vectors =
+        pass == GridPass::momentum_update && with_position && layout.to_surface_stored;
       Tensor<1, dim> to_surface;
-      if (pass == GridPass::momentum_update && with_position && layout.to_surface_stored)
+      if (surface_vectors)
         to_surface = ParticleLayout<dim>::deformation_gradient(properties) *
                      layout.reference_to_surface(properties);
       // a point on its face carries the zero vector
       const bool carries_surface =
-        pass == GridPass::momentum_update && with_position && layout.to_surface_stored &&
-        (carries_normal || to_surface.norm_square() > 0);
+        surface_vectors && (carries_normal || to_surface.norm_square() > 0);
       for (unsigned int v = 0; v < shape.n_nodes; ++v)
         {
           if (!fields.is_contact_node(shape.nodes[v]))
