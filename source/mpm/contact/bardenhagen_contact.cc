@@ -85,6 +85,19 @@ namespace sable::mpm
         },
         1);
     };
+    // round bodies touching faces at points: found in the momentum update,
+    // kept for MUSL's remap pass, which scatters the same masses
+    const bool with_points =
+      parameters.round_surfaces == ContactParameters::RoundSurfaces::contact_point &&
+      parameters.detection == ContactParameters::Detection::surface_position &&
+      node_positions != nullptr;
+    if (with_points && record_forces)
+      find_contact_points(fields, spacing, *node_positions, n_owned_nodes, communicator);
+    else if (!with_points)
+      {
+        contact_points.clear();
+        contact_point_nodes.clear();
+      }
     const Pass pass{fields, spacing, dt, n_owned_nodes, record_forces};
     for_each_chunk([&](const unsigned int chunk, Scratch &scratch) {
       apply_to_chunk(pass, cap_friction, chunk, scratch);
@@ -135,6 +148,8 @@ namespace sable::mpm
               }
           }
       }
+    if (with_points)
+      act_at_contact_points(fields, dt, record_forces, communicator);
   }
 
   template <int dim>
@@ -197,6 +212,7 @@ namespace sable::mpm
     sums.pair_impulses.clear();
     const auto [begin, end] = pass.fields.node_records(node);
     ChunkResults &results   = chunk_results[chunk];
+    scratch.node            = node;
     apply_at_node(begin,
                   end,
                   pass.spacing[node],
@@ -385,6 +401,9 @@ namespace sable::mpm
       total_momentum += r->mass * r->new_velocity;
     const Tensor<1, dim> centre_of_mass_velocity = total_momentum / total_mass;
 
+    // a round body against a face whose contact point took this node
+    if (n == 2 && at_contact_point(scratch.node) && round_against_face(begin[0], begin[1]))
+      return;
     // a two-body node's geometry from an earlier pass (Geometry::reuse)
     const bool reuse = n == 2 && geometry != nullptr && pass_geometry == Geometry::reuse;
     // outward unit normals: sum_p m_p grad N_i(x_p) points from the
@@ -771,7 +790,7 @@ namespace sable::mpm
     // each node to lie on the surface, let those nodes act
     const bool faces = on_one_face(a) || on_one_face(b);
     const bool locate_round =
-      parameters.round_surfaces == ContactParameters::RoundSurfaces::located;
+      parameters.round_surfaces != ContactParameters::RoundSurfaces::centroid_offset;
     const auto located = [&](const typename BodyFields<dim>::Record &r) {
       return surface_known(r) && faces && (r.mass_surface > 0 || locate_round);
     };

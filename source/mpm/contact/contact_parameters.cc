@@ -25,6 +25,7 @@ namespace sable::mpm
       {"shared nodes", ContactParameters::Detection::shared_nodes},
       {"surface position", ContactParameters::Detection::surface_position}};
     const NamedChoice<ContactParameters::RoundSurfaces> round_surface_choices{
+      {"contact point", ContactParameters::RoundSurfaces::contact_point},
       {"located", ContactParameters::RoundSurfaces::located},
       {"centroid offset", ContactParameters::RoundSurfaces::centroid_offset}};
     const NamedChoice<ContactParameters::MultiBodyNodes> multi_body_methods{
@@ -103,20 +104,25 @@ namespace sable::mpm
                       "node, along the normal, shows that their surfaces "
                       "meet within the step (see doc/mpm.md).");
     prm.declare_entry("Round body surfaces",
-                      "located",
+                      "contact point",
                       round_surface_choices.pattern(),
                       "With 'surface position': where a disk's or sphere's "
-                      "surface lies at a node where it meets a box's or mesh "
-                      "body's face. 'located': where its points' vectors to "
-                      "its surface end, as the face's: contact at touch at "
-                      "any registration of the face with the grid (a disk "
-                      "rolls within 3% of the rigid one at 16 cells per "
-                      "diameter), but a disk set at rest on a body creeps, "
-                      "by up to a sixth of a cell in 0.5 s. 'centroid "
-                      "offset': from its points' centroid at the node, taken "
-                      "to lie on the surface: rests quietly, rolls up to 9% "
-                      "behind with the face between grid lines (see "
-                      "doc/validation.md). Between two round bodies the "
+                      "surface lies where it meets a box's or mesh body's "
+                      "face. 'located': at each node, where its points' "
+                      "vectors to its surface end, as the face's: contact at "
+                      "touch at any registration of the face with the grid, "
+                      "but the node nearest the round body's lowest point "
+                      "carries its weight alone, a pivot off the contact "
+                      "point (a disk set at rest on a body creeps, by up to "
+                      "a sixth of a cell in 0.5 s). 'contact point' (the "
+                      "default): located, and where the round body touches "
+                      "the face over less than a cell, the nodes around its "
+                      "lowest point share one impulse whose line passes "
+                      "through that point: rests within 0.5% of a cell and "
+                      "rolls within 1%. 'centroid offset': from its points' "
+                      "centroid at each node, taken to lie on the surface: "
+                      "rolls up to 9% behind with the face between grid "
+                      "lines (see doc/mpm.md). Between two round bodies the "
                       "centroid offset is used either way.");
     prm.declare_entry("Nodes with three or more bodies",
                       "pairwise",

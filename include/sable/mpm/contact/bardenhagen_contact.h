@@ -8,8 +8,9 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
-#include <utility>
 #include <limits>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace sable::mpm
@@ -301,6 +302,8 @@ namespace sable::mpm
       NodeSums                sums;
       /// the nodes of a chunk to correct again
       std::vector<unsigned int> nodes_to_redo;
+      /// the node being corrected
+      unsigned int node = 0;
     };
 
     /// Contact nodes per chunk of the threaded loop, which keeps its
@@ -411,6 +414,62 @@ namespace sable::mpm
     surfaces_meet(const SurfaceGap &gap, const double closing, const double dt)
     {
       return gap.separation - dt * std::max(closing, 0.) <= gap.touching;
+    }
+
+    /// Whether one of the records is a disk's or sphere's and the other a
+    /// box's or mesh body's.
+    bool
+    round_against_face(const typename BodyFields<dim>::Record &a,
+                       const typename BodyFields<dim>::Record &b) const;
+
+    /**
+     * A round body touching a flat face at a point (`Round body surfaces =
+     * contact point`, source/mpm/contact/contact_points.cc): the round
+     * body's lowest point along the face's normal, and the nodes around it
+     * that take its impulse instead of the node kernel.
+     */
+    struct ContactPoint
+    {
+      unsigned int   round, flat;
+      Tensor<1, dim> point, normal;
+      /// the gap between the point and the face, and the cell's size
+      /// along the normal
+      double gap, cell;
+      /// the mean normal traction there is compressive (the 2001 rule
+      /// holds the point)
+      bool compressed;
+      struct Node
+      {
+        unsigned int node;
+        /// the node's linear weight at the point (sum 1 over all ranks),
+        /// and each body's share of a normal impulse
+        double weight, round_share, flat_share;
+        bool   owned;
+      };
+      std::vector<Node> nodes;
+    };
+
+    /// Find the contact points of this momentum update (before the node
+    /// kernel, which then leaves their nodes alone).
+    void
+    find_contact_points(const BodyFields<dim> &             fields,
+                        const std::vector<Tensor<1, dim>> &spacing,
+                        const std::vector<Point<dim>> &    positions,
+                        const unsigned int                 n_owned_nodes,
+                        const MPI_Comm                     communicator);
+
+    /// Stop the approach at each contact point, with Coulomb friction there.
+    void
+    act_at_contact_points(BodyFields<dim> & fields,
+                          const double      dt,
+                          const bool        record_forces,
+                          const MPI_Comm    communicator);
+
+    /// Whether the node kernel leaves @p node to a contact point.
+    bool
+    at_contact_point(const unsigned int node) const
+    {
+      return node < contact_point_nodes.size() && contact_point_nodes[node] != 0;
     }
 
     /// The number of pairs whose geometry a node of @p n bodies keeps.
@@ -524,6 +583,9 @@ namespace sable::mpm
     /// bounded by the net normal impulse over time, not only per step),
     /// and the table being built for the next step
     PairTable<double> pulling_impulse, next_pulling_impulse;
+    /// this step's contact points, and per node whether one took it
+    std::vector<ContactPoint>  contact_points;
+    std::vector<unsigned char> contact_point_nodes;
   };
 } // namespace sable::mpm
 

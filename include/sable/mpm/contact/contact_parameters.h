@@ -77,9 +77,13 @@ namespace sable::mpm
       /// so too): contact at touch at any registration with the grid
       located,
       /// the centroid's offset, the node taken to lie on the surface
-      centroid_offset
+      centroid_offset,
+      /// located, and where a round body touches one face over less than a
+      /// cell, it meets the face at one point, its lowest along the face's
+      /// normal, whose impulse the nodes around it share
+      contact_point
     };
-    RoundSurfaces round_surfaces = RoundSurfaces::located;
+    RoundSurfaces round_surfaces = RoundSurfaces::contact_point;
     /// Contact at nodes that three or more bodies share.
     enum class MultiBodyNodes
     {
