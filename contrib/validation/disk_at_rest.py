@@ -8,7 +8,8 @@ of its face from the grid line, on the grid's fixed floor. Gravity
 9.81 m/s^2 straight down, `bardenhagen 2001`, friction mu between the bodies,
 settled with `Solver/Settling steps` to 1e-6, then run 0.5 s.
 
-Three experiments, each with both `Contact/Round body surfaces` estimates:
+Three experiments, each with the three `Contact/Round body surfaces`
+estimates (`contact point`, the default; `located`; `centroid offset`):
   rest   the disk's centre 0.3 cells off a grid line, the face 0, 0.3 and
          0.5 cells off one: the largest |dx| of the disk's centre of mass
          after settling (a disk at rest should stay);
@@ -39,6 +40,7 @@ MATERIAL = {"Young's modulus": 9 * K * SHEAR / (3 * K + SHEAR),
             "Poisson's ratio": (3 * K - 2 * SHEAR) / (2 * (3 * K + SHEAR)),
             "Density": 1000, "Particles per cell direction": 2}
 START_SPEED = 0.002
+ESTIMATES = ("contact point", "located", "centroid offset")
 
 
 def scene(face_offset, centre_x, mu, start, extra):
@@ -88,7 +90,8 @@ def main():
     pendulum = math.sqrt(2 * G / (3 * R))
     lines = [f"R = {R} m, {2 * R / H:.1f} cells per diameter, K = 1 MPa, G = 0.5 MPa"
              + (f", {'; '.join(args.set)}" if args.set else ""), "",
-             "| experiment | `located` | `centroid offset` |", "|---|---|---|"]
+             "| experiment | " + " | ".join(f"`{e}`" for e in ESTIMATES) + " |",
+             "|---|" + "---|" * len(ESTIMATES)]
     experiments = [(f"rest, face {offset:g} cells off: largest \\|dx\\| / cell",
                     (offset, 0.5 + 0.3 * H, 0.5, False)) for offset in (0, 0.3, 0.5)]
     experiments += [("roll, centre over a node: v at 0.5 s / start; growth rate, 1/s "
@@ -96,7 +99,7 @@ def main():
                     ("spin, frictionless: omega R at 0.5 s / start", (0, 0.5, 0, True))]
     for name, (offset, centre_x, mu, start) in experiments:
         cells = []
-        for estimate in ("located", "centroid offset"):
+        for estimate in ESTIMATES:
             entries, bodies = scene(offset, centre_x, mu, start,
                                     dict({"Contact/Round body surfaces": estimate}, **extra))
             tag = name.split(",")[0] + f"_{offset:g}_" + estimate.split()[0]
@@ -113,7 +116,7 @@ def main():
                              + (f"; {rate:.2f}" if rate is not None else "; does not double"))
             else:
                 cells.append(f"{-rows[-1]['body1_omega'] * R / START_SPEED:.2f}")
-        lines.append(f"| {name} | {cells[0]} | {cells[1]} |")
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
         print(lines[-1], flush=True)
     os.makedirs(args.work, exist_ok=True)
     with open(os.path.join(args.work, "disk_at_rest.md"), "w") as f:

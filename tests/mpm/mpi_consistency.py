@@ -134,6 +134,18 @@ compare("contact_2d_conforming", contact_2d,
         [dict(elastic, Shape="disk", Center="0.745, 0.5", Radius=0.2, Velocity="5, 0", Seeding="conforming"),
          dict(elastic, Shape="disk", Center="1.255, 0.5", Radius=0.2, Velocity="-5, 0", Seeding="conforming")])
 
+# a disk rolling on a plane body, its contact point with the face shared
+# by nodes on both sides of the partition (the point found from sums over
+# all ranks, its impulse from the velocities of all of its nodes)
+compare("contact_point_2d", {
+    "Dimension": 2, "Gravity": "4.905, -8.496", "Time/End time": 0.05,
+    "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 0.5", "Grid/Subdivisions": "40, 20",
+    "Boundary conditions/Types": "2: fixed", "Contact/Model": "bardenhagen 2001",
+    "Contact/Friction coefficient": 0.5, "Output/Statistics interval": 1,
+}, [dict(elastic, Shape="box", **{"Lower corner": "0, 0", "Upper corner": "1, 0.1125"}),
+    dict(elastic, Shape="disk", Center="0.5, 0.2725", Radius=0.16, Velocity="1, 0",
+         **{"Angular velocity": -6.25})])
+
 # 32 x 32 cells, a box of 8 x 8 cells with 4 x 4 points per cell (1024
 # points) in the lower left corner, moving and squeezed against the walls
 corner = {

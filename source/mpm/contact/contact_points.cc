@@ -9,7 +9,7 @@
 #include <tuple>
 
 /*
- * A disk or sphere touching a flat face touches it at a point, which lies
+ * A disk touching a flat face touches it at a point (used in 2D), which lies
  * between nodes. Corrected node by node, its weight goes to the node
  * nearest that point (the nodes beside it see the surface curve away),
  * up to half a cell off the point: a pivot under the centre, off which a

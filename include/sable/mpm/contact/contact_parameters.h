@@ -78,9 +78,10 @@ namespace sable::mpm
       located,
       /// the centroid's offset, the node taken to lie on the surface
       centroid_offset,
-      /// located, and where a round body touches one face over less than a
-      /// cell, it meets the face at one point, its lowest along the face's
-      /// normal, whose impulse the nodes around it share
+      /// located, and where a disk touches one face over less than a cell,
+      /// it meets the face at one point, its lowest along the face's
+      /// normal, whose impulse the nodes around it share (2D; spheres are
+      /// located)
       contact_point
     };
     RoundSurfaces round_surfaces = RoundSurfaces::contact_point;
