@@ -86,7 +86,7 @@ namespace sable::mpm
         1);
     };
     // round bodies touching faces at points: found in the momentum update,
-    // kept for MUSL's remap pass, which scatters the same masses. In 2D:
+    // kept for MUSL's remap pass, which scatters the same masses. Only in 2D:
     // a sphere meeting a plate at a point did not settle (A2, A3: kinetic
     // peaks at 4e-6 of the strain energy after 20,000 steps), so spheres
     // keep the located surfaces
