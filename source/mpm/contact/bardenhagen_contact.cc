@@ -91,7 +91,7 @@ namespace sable::mpm
     // peaks at 4e-6 of the strain energy after 20,000 steps), so spheres
     // keep the located surfaces
     const bool with_points =
-      dim == 2 &&
+      dim == 2 && round_and_flat_bodies &&
       parameters.round_surfaces == ContactParameters::RoundSurfaces::contact_point &&
       parameters.detection == ContactParameters::Detection::surface_position &&
       node_positions != nullptr;

@@ -75,10 +75,7 @@ namespace sable::mpm
   BardenhagenContact<dim>::round_against_face(const typename BodyFields<dim>::Record &a,
                                               const typename BodyFields<dim>::Record &b) const
   {
-    const auto round = [&](const typename BodyFields<dim>::Record &r) {
-      return r.body < body_surface_radii.size() && std::isfinite(body_surface_radii[r.body]);
-    };
-    return round(a) != round(b) && body_surface_radii.size() > std::max(a.body, b.body);
+    return std::isfinite(body_surface_radii[a.body]) != std::isfinite(body_surface_radii[b.body]);
   }
 
   template <int dim>
@@ -90,8 +87,14 @@ namespace sable::mpm
                                                const MPI_Comm                     communicator)
   {
     using Record = typename BodyFields<dim>::Record;
+    // unmark the last step's nodes (all of them after a mesh change)
+    if (contact_point_nodes.size() != positions.size())
+      contact_point_nodes.assign(positions.size(), 0);
+    else
+      for (const ContactPoint &point : contact_points)
+        for (const auto &node : point.nodes)
+          contact_point_nodes[node.node] = 0;
     contact_points.clear();
-    contact_point_nodes.assign(positions.size(), 0);
 
     // the two-body nodes of each (round, flat) pair, and its records
     const auto for_each_pair_node = [&](const auto &visit) {
@@ -162,11 +165,11 @@ namespace sable::mpm
     // 2. the pair's nodes within a cell of the point, with their linear
     // weights there; a patch wider than that (the surfaces meet at a node
     // beyond) leaves the pair to the nodes. Per point: the weights' sum,
-    // the mean normal traction, whether the patch is wide, and per body
-    // the moments sum m, sum m d, sum m d d^T of its records' masses over
-    // their offsets d across the normal (for the shares)
+    // the normal traction, whether the patch is wide, and per body the
+    // moments sum m, sum m d, sum m d d^T of its records' masses over their
+    // offsets d across the normal (for the shares)
     constexpr unsigned int n_moments = dim * dim;
-    constexpr unsigned int n_second  = 4 + 2 * n_moments;
+    constexpr unsigned int n_second  = 3 + 2 * n_moments;
     std::map<std::pair<unsigned int, unsigned int>, unsigned int> index;
     for (unsigned int i = 0; i < contact_points.size(); ++i)
       index[{contact_points[i].round, contact_points[i].flat}] = i;
@@ -207,10 +210,7 @@ namespace sable::mpm
         return;
       sum[0] += weight;
       for (const Record *r : {&round, &flat})
-        {
-          sum[1] += point.normal * (r->mass_stress * point.normal);
-          sum[3] += r->mass;
-        }
+        sum[1] += point.normal * (r->mass_stress * point.normal);
       const auto tangents = tangents_of(point.normal);
       for (unsigned int body = 0; body < 2; ++body)
         {
@@ -221,7 +221,7 @@ namespace sable::mpm
             row[t + 1] = offset * tangents[t] / point.cell;
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
-              sum[4 + body * n_moments + i * dim + j] += mass * row[i] * row[j];
+              sum[3 + body * n_moments + i * dim + j] += mass * row[i] * row[j];
         }
     });
     sum_over_ranks(second, n_second, communicator);
@@ -244,7 +244,7 @@ namespace sable::mpm
             FullMatrix<double> moments(dim, dim);
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = 0; j < dim; ++j)
-                moments(i, j) = sum[4 + body * n_moments + i * dim + j];
+                moments(i, j) = sum[3 + body * n_moments + i * dim + j];
             // the offsets span no direction across the normal (the nodes
             // in one line): no tilt moves the impulse's line onto the point
             if (!(std::abs(moments.determinant()) > 1e-8 * std::pow(moments(0, 0), dim)))

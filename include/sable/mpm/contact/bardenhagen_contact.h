@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <utility>
@@ -119,6 +120,10 @@ namespace sable::mpm
     {
       body_surface_radii = surface_radii;
       body_volumes       = volumes;
+      // contact points need a round body and a flat one
+      const auto round = [](const double r) { return std::isfinite(r); };
+      round_and_flat_bodies = std::any_of(surface_radii.begin(), surface_radii.end(), round) &&
+                              !std::all_of(surface_radii.begin(), surface_radii.end(), round);
     }
 
     /// Per body, the directions of its faces in the reference
@@ -586,6 +591,8 @@ namespace sable::mpm
     /// this step's contact points, and per node whether one took it
     std::vector<ContactPoint>  contact_points;
     std::vector<unsigned char> contact_point_nodes;
+    /// the scene has disks or spheres and boxes or mesh bodies
+    bool round_and_flat_bodies = false;
   };
 } // namespace sable::mpm
 
