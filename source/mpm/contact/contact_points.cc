@@ -50,6 +50,23 @@ namespace sable::mpm
           }
     }
 
+    /// The largest fraction of the friction impulse @p added, at most 1, that
+    /// keeps its sum with the impulse @p earlier within @p cap (or within
+    /// |earlier|, if that is more: a later pass never undoes what an earlier
+    /// one did, it only stops short).
+    template <int dim>
+    double
+    fraction_within_cap(const Tensor<1, dim> &earlier, const Tensor<1, dim> &added, const double cap)
+    {
+      const double a = added * added;
+      if (a == 0)
+        return 0;
+      const double bound = std::max(cap, earlier.norm());
+      const double b     = earlier * added;
+      const double c     = earlier * earlier - bound * bound;
+      return std::min(1., (-b + std::sqrt(std::max(b * b - a * c, 0.))) / a);
+    }
+
     /// dim - 1 unit vectors spanning the plane normal to @p n.
     template <int dim>
     std::array<Tensor<1, dim>, dim - 1>
@@ -116,7 +133,10 @@ namespace sable::mpm
     constexpr unsigned int n_first = 3 * dim + 2;
     PairSums               first;
     for_each_pair_node([&](const unsigned int node, const Record &round, const Record &flat) {
-      if (node >= n_owned_nodes || !on_one_face(flat) || !surface_known(flat) ||
+      // (a driven body's records carry its masses scaled, its surface not)
+      const double flat_mass =
+        flat.body < body_mass_factors.size() ? flat.mass / body_mass_factors[flat.body] : flat.mass;
+      if (node >= n_owned_nodes || !on_one_face(flat) || flat.mass_on_surface < 0.9 * flat_mass ||
           round.mass_on_surface < 0.9 * round.mass)
         return;
       const Tensor<1, dim> end    = round.mass_surface_point / round.mass_on_surface;
@@ -315,7 +335,7 @@ namespace sable::mpm
       }
     sum_over_ranks(sums, n_sums, communicator);
 
-    for (const ContactPoint &point : contact_points)
+    for (ContactPoint &point : contact_points)
       {
         const std::vector<double> &sum = sums[{point.round, point.flat}];
         Tensor<1, dim>             shared, at_point;
@@ -342,9 +362,26 @@ namespace sable::mpm
         Tensor<1, dim>       friction_direction;
         if (slip_speed > 0 && sum[2 * dim + 1] > 0)
           {
-            friction           = std::min(slip_speed / sum[2 * dim + 1],
-                                mu * std::max(normal_impulse, 0.));
+            const double stick = slip_speed / sum[2 * dim + 1];
             friction_direction = -slip / slip_speed;
+            // the momentum update: mu times the pressing part of its
+            // normal impulse. MUSL's remap pass (no forces recorded) corrects
+            // the same step again: the step's two friction impulses together
+            // stay within mu times its two normal impulses (its own is
+            // small, the approach having been stopped already)
+            friction =
+              record_forces ?
+                std::min(stick, mu * std::max(normal_impulse, 0.)) :
+                stick * fraction_within_cap(point.first_friction,
+                                            stick * friction_direction,
+                                            mu * std::max(point.first_normal_impulse +
+                                                            normal_impulse,
+                                                          0.));
+          }
+        if (record_forces)
+          {
+            point.first_normal_impulse = normal_impulse;
+            point.first_friction       = friction * friction_direction;
           }
         double owned_weight = 0;
         for (const auto &node : point.nodes)

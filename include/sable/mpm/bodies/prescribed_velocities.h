@@ -38,6 +38,13 @@ namespace sable::mpm
       return n_prescribed > 0;
     }
 
+    /// The number of bodies, drivers or not.
+    unsigned int
+    n_bodies() const
+    {
+      return prescribed.size();
+    }
+
     bool
     is_prescribed(const unsigned int body) const
     {

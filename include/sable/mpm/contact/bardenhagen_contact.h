@@ -126,6 +126,15 @@ namespace sable::mpm
                               !std::all_of(surface_radii.begin(), surface_radii.end(), round);
     }
 
+    /// Per body, the factor by which apply() sees its records' masses: a
+    /// driven body's are scaled (MultiBodyContact::hold_drivers()), the
+    /// sums locating its surface are not. Unset: 1 for every body.
+    void
+    set_body_mass_factors(const std::vector<double> &factors)
+    {
+      body_mass_factors = factors;
+    }
+
     /// Per body, the directions of its faces in the reference
     /// configuration: the distinct normals its points carry
     /// (MultiBodyContact), body b's from @p start[b] to @p start[b + 1];
@@ -443,6 +452,9 @@ namespace sable::mpm
       /// the mean normal traction there is compressive (the 2001 rule
       /// holds the point)
       bool compressed;
+      /// the momentum update's normal and friction impulses at the point
+      double         first_normal_impulse = 0;
+      Tensor<1, dim> first_friction;
       struct Node
       {
         unsigned int node;
@@ -538,7 +550,7 @@ namespace sable::mpm
                         parameters.friction_between(body_groups[body_a], body_groups[body_b]);
     }
     std::vector<unsigned int> body_groups;
-    std::vector<double>       body_surface_radii, body_volumes;
+    std::vector<double>       body_surface_radii, body_volumes, body_mass_factors;
     /// set_face_directions(), and the same turned by
     /// turn_face_directions()
     std::vector<Tensor<1, dim>> reference_face_directions, face_directions;

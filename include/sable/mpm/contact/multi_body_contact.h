@@ -213,6 +213,11 @@ namespace sable::mpm
     set_prescribed_velocities(const PrescribedVelocities<dim> *drivers)
     {
       prescribed = drivers;
+      std::vector<double> mass_factors(drivers != nullptr ? drivers->n_bodies() : 0, 1.);
+      for (unsigned int body = 0; body < mass_factors.size(); ++body)
+        if (drivers->is_prescribed(body))
+          mass_factors[body] = driver_mass_factor;
+      model.set_body_mass_factors(mass_factors);
     }
 
     /// Work the drivers did on the other bodies in the last
