@@ -87,9 +87,9 @@ namespace sable::mpm
     };
     // round bodies touching faces at points: found in the momentum update,
     // kept for MUSL's remap pass, which scatters the same masses. Only in 2D:
-    // a sphere meeting a plate at a point did not settle (A2, A3: kinetic
-    // peaks at 4e-6 of the strain energy after 20,000 steps), so spheres
-    // keep the located surfaces
+    // a sphere meeting a plate at a point rolled no better (A3 at R/4 -8.2%
+    // against -4.3% located, the same at R/8), so spheres keep the located
+    // surfaces
     const bool with_points =
       dim == 2 && round_and_flat_bodies &&
       parameters.round_surfaces == ContactParameters::RoundSurfaces::contact_point &&
