@@ -3,6 +3,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <sable/mpm/contact/bardenhagen_contact.h>
+#include <sable/mpm/contact/coulomb.h>
 
 #include <cmath>
 #include <map>
@@ -48,23 +49,6 @@ namespace sable::mpm
             for (unsigned int k = 0; k < n_values; ++k)
               values[k] += part[i + 2 + k];
           }
-    }
-
-    /// The largest fraction of the friction impulse @p added, at most 1, that
-    /// keeps its sum with the impulse @p earlier within @p cap (or within
-    /// |earlier|, if that is more: a later pass never undoes what an earlier
-    /// one did, it only stops short).
-    template <int dim>
-    double
-    fraction_within_cap(const Tensor<1, dim> &earlier, const Tensor<1, dim> &added, const double cap)
-    {
-      const double a = added * added;
-      if (a == 0)
-        return 0;
-      const double bound = std::max(cap, earlier.norm());
-      const double b     = earlier * added;
-      const double c     = earlier * earlier - bound * bound;
-      return std::min(1., (-b + std::sqrt(std::max(b * b - a * c, 0.))) / a);
     }
 
     /// dim - 1 unit vectors spanning the plane normal to @p n.

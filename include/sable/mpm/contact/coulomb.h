@@ -66,6 +66,29 @@ namespace sable::mpm
     result.tangential_change = tau;
     return result;
   }
+
+  /**
+   * MUSL's remap pass corrects a step that the momentum update corrected
+   * already; Coulomb's law holds for the step's impulses together. Of the
+   * friction @p added (the change that would stop the slip the remap pass
+   * sees), the largest fraction, at most 1, that keeps its sum with the
+   * momentum update's friction @p earlier within @p cap (mu times the two
+   * passes' pressing normal changes), or within |earlier| if that is more:
+   * the remap pass only ever opposes the slip it sees, and stops short
+   * rather than undo what the momentum update did.
+   */
+  template <int dim>
+  inline double
+  fraction_within_cap(const Tensor<1, dim> &earlier, const Tensor<1, dim> &added, const double cap)
+  {
+    const double a = added * added;
+    if (a == 0)
+      return 0;
+    const double bound = std::max(cap, earlier.norm());
+    const double b     = earlier * added;
+    const double c     = earlier * earlier - bound * bound;
+    return std::min(1., (-b + std::sqrt(std::max(b * b - a * c, 0.))) / a);
+  }
 } // namespace sable::mpm
 
 #endif
