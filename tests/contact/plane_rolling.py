@@ -52,6 +52,16 @@ for offset, theta, mu, radius in ((0.25, 30, 0.5, 0.2), (0.5, 30, 0.5, 0.2), (0.
     travel = rows[-1]["body1_x"] - rows[0]["body1_x"]
     error = travel / (G * math.sin(math.radians(theta)) / 3 * t * t) - 1
     check(f"{what}: travel within 3% of the rigid rolling disk's", abs(error) <= 0.03, f"{error:+.2%}")
+    # Coulomb at every row: the friction between the bodies at most mu times
+    # their pressing normal force, none while the 2001 rule's hold pulls.
+    # The grid's axes are the face's up to the face's tilt under the disk
+    # (measured below 1e-4 rad: a pulling force shows 1e-5 to 1e-4 of
+    # itself along x, a pressing one up to 3e-4 of mu times itself): 1e-3
+    # of the normal force allowed
+    excess = max(abs(r["contact0_1_fx"]) - mu * max(-r["contact0_1_fy"], 0) - 1e-3 * abs(r["contact0_1_fy"])
+                 for r in rows[1:])
+    check(f"{what}: friction at most mu times the pressing normal force at every row",
+          excess <= 1e-6 * plane_rolling.MATERIAL["Density"] * radius ** 2 * G, f"largest excess {excess:.3g} N")
     rise = max(r["body1_y"] for r in rows) - rows[0]["body1_y"]
     check(f"{what}: the disk stays on the plane (rises less than 0.1 cell)",
           rise < 0.1 * plane_rolling.H, f"{rise / plane_rolling.H:.3f} cells")
