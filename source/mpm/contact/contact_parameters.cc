@@ -119,7 +119,7 @@ namespace sable::mpm
                       "over less than a cell, the nodes around its lowest "
                       "point share one impulse whose line passes through "
                       "that point: rests within 0.5% of a cell and rolls "
-                      "within 3% but in one case of 23 (2D; spheres in 3D "
+                      "within 3% in all 23 cases tried (2D; spheres in 3D "
                       "are located). 'centroid offset': from its points' "
                       "centroid at each node, taken to lie on the surface: "
                       "rolls up to 9% behind with the face between grid "
