@@ -146,6 +146,18 @@ compare("contact_point_2d", {
     dict(elastic, Shape="disk", Center="0.5, 0.2725", Radius=0.16, Velocity="1, 0",
          **{"Angular velocity": -6.25})])
 
+# the same disk set down at rest on a driven belt (a box of prescribed
+# velocity, whose records the contact sees with scaled masses): the point's
+# face test reads the belt's own mass on every rank
+compare("contact_point_driven_2d", {
+    "Dimension": 2, "Gravity": "0, -9.81", "Time/End time": 0.05,
+    "Grid/Lower corner": "0, 0", "Grid/Upper corner": "1, 0.5", "Grid/Subdivisions": "40, 20",
+    "Contact/Model": "bardenhagen 2001", "Contact/Friction coefficient": 0.3,
+    "Output/Statistics interval": 1,
+}, [dict(elastic, Shape="box", **{"Lower corner": "0.1, 0", "Upper corner": "0.9, 0.1125",
+                                  "Prescribed velocity": "1, 0"}),
+    dict(elastic, Shape="disk", Center="0.5, 0.2725", Radius=0.16)])
+
 # 32 x 32 cells, a box of 8 x 8 cells with 4 x 4 points per cell (1024
 # points) in the lower left corner, moving and squeezed against the walls
 corner = {
