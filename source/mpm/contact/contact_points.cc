@@ -114,7 +114,7 @@ namespace sable::mpm
     // surface (its points' mean end less the radius along their mean
     // vector to it), and the face under the flat records; the owned nodes'
     // sums, then all ranks'
-    constexpr unsigned int n_first = 3 * dim + 2;
+    constexpr unsigned int n_first = 3 * dim + 3;
     PairSums               first;
     for_each_pair_node([&](const unsigned int node, const Record &round, const Record &flat) {
       // (a driven body's records carry its masses scaled, its surface not)
@@ -139,6 +139,7 @@ namespace sable::mpm
         }
       sum[3 * dim] += round.mass;
       sum[3 * dim + 1] += flat.mass_surface;
+      sum[3 * dim + 2] += flat.mass;
     });
     sum_over_ranks(first, n_first, communicator);
 
@@ -149,7 +150,7 @@ namespace sable::mpm
         for (unsigned int d = 0; d < dim; ++d)
           {
             centre[d] = sum[d] / sum[3 * dim];
-            face[d]   = sum[dim + d] / sum[3 * dim + 1];
+            face[d]   = sum[dim + d] / sum[3 * dim + 2];
             normal[d] = sum[2 * dim + d];
           }
         if (normal.norm() < (1 - 1e-4) * sum[3 * dim + 1])
