@@ -10,7 +10,9 @@ namespace sable::mpm
    * pass that remaps the updated particle momenta to the grid for the
    * strain update (mass and momentum only); USAVG also maps the momenta at
    * the start of the step, for the first half of its strain update (mass
-   * and momentum only, no contact correction, no heat counted).
+   * and momentum only, no heat counted; with contact, the bodies' records
+   * take the momentum update's scatter, see
+   * MultiBodyContact::correct_initial_velocities()).
    */
   enum class GridPass
   {

@@ -407,6 +407,8 @@ namespace sable::mpm
     /// rank's points so far (GridToParticle::measure_corrections()); summed
     /// over the ranks for the statistics, and kept on rank 0 by a restart
     double correction_loss = 0;
+    /// USAVG's first half took the contact on this step's initial velocities
+    bool contact_in_first_half = false;
     /// on one rank: moves the points that left their cells in place of a
     /// sort; a full sort still runs once the moved points add up to
     /// full_sort_fraction of the points (it orders their data in memory)

@@ -94,6 +94,21 @@ namespace sable::mpm
   }
 
   template <int dim>
+  void
+  BoundaryConditions<dim>::apply_to_initial_bodies(BodyFields<dim> &fields) const
+  {
+    for (const NodeConstraint &c : constraints)
+      if (fields.is_contact_node(c.node) &&
+          parameters.find(c.id)->second.type != BoundaryType::friction)
+        {
+          const auto [begin, end] = fields.node_records(c.node);
+          for (auto *r = begin; r != end; ++r)
+            if (r->mass > 0.)
+              apply_one(c, &r->new_velocity[0]);
+        }
+  }
+
+  template <int dim>
   double
   BoundaryConditions<dim>::tangential_speed(const NodeConstraint &c, const double *v)
   {

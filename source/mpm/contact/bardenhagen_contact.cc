@@ -158,6 +158,31 @@ namespace sable::mpm
 
   template <int dim>
   void
+  BardenhagenContact<dim>::apply_to_initial(BodyFields<dim> &                  fields,
+                                            const std::vector<Tensor<1, dim>> &spacing,
+                                            const double                       dt,
+                                            const unsigned int                 n_owned_nodes,
+                                            const MPI_Comm                     communicator,
+                                            const std::vector<Point<dim>> *    node_positions,
+                                            const std::vector<Tensor<1, dim>> *fitted_normals)
+  {
+    const PairTable<double>           pulled              = pulling_impulse;
+    const double                      heat                = frictional_heat;
+    const double                      defect              = momentum_defect;
+    const double                      correction          = momentum_correction;
+    const std::vector<Tensor<1, dim>> forces              = pair_forces;
+    const std::vector<Tensor<1, 3>>   moments             = pair_moments;
+    apply(fields, spacing, dt, n_owned_nodes, true, communicator, node_positions, fitted_normals);
+    pulling_impulse     = pulled;
+    frictional_heat     = heat;
+    momentum_defect     = defect;
+    momentum_correction = correction;
+    pair_forces         = forces;
+    pair_moments        = moments;
+  }
+
+  template <int dim>
+  void
   BardenhagenContact<dim>::apply_to_chunk(const Pass &       pass,
                                           const bool         measure,
                                           const unsigned int chunk,

@@ -114,6 +114,18 @@ namespace sable::mpm
       }
   }
 
+  template <int dim>
+  void
+  BodyFields<dim>::zero_records()
+  {
+    for (Record &r : records)
+      {
+        const unsigned int body = r.body;
+        r                       = Record{};
+        r.body                  = body;
+      }
+  }
+
   template class BodyFields<2>;
   template class BodyFields<3>;
 } // namespace sable::mpm

@@ -388,33 +388,7 @@ namespace sable::mpm
                                             const unsigned int             n_owned_nodes)
   {
     constexpr bool momentum_update = pass == GridPass::momentum_update;
-    // node by node: threads change nothing
-    const std::vector<unsigned int> &contact_nodes = fields.get_contact_nodes();
-    parallel::apply_to_subranges(
-      0u,
-      static_cast<unsigned int>(contact_nodes.size()),
-      [&](const unsigned int first, const unsigned int last) {
-        for (unsigned int i = first; i < last; ++i)
-          {
-            const auto [begin, end] = fields.node_records(contact_nodes[i]);
-            for (Record *r = begin; r != end; ++r)
-              {
-                if (r->mass <= 0.)
-                  continue;
-                const Tensor<1, dim> velocity = r->momentum / r->mass;
-                if constexpr (momentum_update)
-                  {
-                    r->old_velocity = velocity;
-                    r->new_velocity = velocity + time_step * (r->force / r->mass + gravity);
-                  }
-                else
-                  r->new_velocity = velocity;
-                // the velocity before the corrections, until the end
-                r->correction = r->new_velocity;
-              }
-          }
-      },
-      256);
+    compute_velocities(momentum_update, gravity, time_step);
     if (!momentum_update && heat_at_remap)
       count_heat_on_remapped(boundary_conditions, time_step, n_owned_nodes);
     const bool drivers = prescribed != nullptr && prescribed->any();
@@ -453,6 +427,65 @@ namespace sable::mpm
       hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())
       boundary_conditions.apply_to_bodies(fields, !momentum_update, n_owned_nodes);
+    keep_corrections(boundary_conditions);
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::compute_velocities(const bool            with_forces,
+                                            const Tensor<1, dim> &gravity,
+                                            const double          time_step)
+  {
+    // node by node: threads change nothing
+    const std::vector<unsigned int> &contact_nodes = fields.get_contact_nodes();
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(contact_nodes.size()),
+      [&](const unsigned int first, const unsigned int last) {
+        for (unsigned int i = first; i < last; ++i)
+          {
+            const auto [begin, end] = fields.node_records(contact_nodes[i]);
+            for (Record *r = begin; r != end; ++r)
+              {
+                if (r->mass <= 0.)
+                  continue;
+                const Tensor<1, dim> velocity = r->momentum / r->mass;
+                if (with_forces)
+                  {
+                    r->old_velocity = velocity;
+                    r->new_velocity = velocity + time_step * (r->force / r->mass + gravity);
+                  }
+                else
+                  r->new_velocity = velocity;
+                // the velocity before the corrections, until the end
+                r->correction = r->new_velocity;
+              }
+          }
+      },
+      256);
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::correct_initial_velocities(
+    const Grid<dim> &              grid,
+    const BoundaryConditions<dim> &boundary_conditions,
+    const double                   time_step,
+    const unsigned int             n_owned_nodes)
+  {
+    compute_velocities(false, Tensor<1, dim>(), time_step);
+    if (with_regression)
+      fit_separating_planes(grid);
+    if (parameters.on_momentum_update || parameters.on_strain_update)
+      model.apply_to_initial(fields,
+                             grid.node_spacing(),
+                             time_step,
+                             n_owned_nodes,
+                             grid.triangulation.get_communicator(),
+                             grid.periodicity().any() ? nullptr : &grid.node_positions(),
+                             with_regression ? &fitted_normals : nullptr);
+    if (!boundary_conditions.empty())
+      boundary_conditions.apply_to_initial_bodies(fields);
     keep_corrections(boundary_conditions);
   }
 

@@ -202,6 +202,10 @@ namespace sable::mpm
     void
     apply_to_initial(std::vector<double> &velocity, const std::vector<double> &mass) const;
 
+    /// The same on the bodies' records at the contact nodes.
+    void
+    apply_to_initial_bodies(BodyFields<dim> &fields) const;
+
   private:
     struct NodeConstraint
     {

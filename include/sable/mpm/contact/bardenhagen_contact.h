@@ -98,6 +98,19 @@ namespace sable::mpm
           const std::vector<Tensor<1, dim>> *fitted_normals = nullptr,
           const Geometry                     geometry       = Geometry::compute);
 
+    /// The contact on the velocities at the start of a step (USAVG's first
+    /// half): decided afresh, as in the momentum update, but nothing is
+    /// kept of it: heat, sums, pair forces and the pairs' carried pull stay
+    /// as they were.
+    void
+    apply_to_initial(BodyFields<dim> &                  fields,
+                     const std::vector<Tensor<1, dim>> &spacing,
+                     const double                       dt,
+                     const unsigned int                 n_owned_nodes,
+                     const MPI_Comm                     communicator,
+                     const std::vector<Point<dim>> *    node_positions,
+                     const std::vector<Tensor<1, dim>> *fitted_normals);
+
     /// With 'Normals = fitted at edges': whether two bodies whose unit
     /// outward directions at a node are @p normal_a and @p normal_b meet
     /// there at an edge, not face to face, and take the fitted plane's

@@ -134,6 +134,10 @@ namespace sable::mpm
     void
     zero_momenta();
 
+    /// Zero every record but its body, for a pass that sums all of it again.
+    void
+    zero_records();
+
     bool
     is_contact_node(const unsigned int node) const
     {

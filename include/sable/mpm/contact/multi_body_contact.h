@@ -166,6 +166,39 @@ namespace sable::mpm
         }
     }
 
+    /// Zero the records before a second momentum-update scatter (after
+    /// correct_initial_velocities()).
+    void
+    zero_records()
+    {
+      fields.zero_records();
+      for (auto &record_samples : samples)
+        record_samples.clear();
+    }
+
+    /// Whether USAVG's first half can take the contact on the velocities
+    /// at the start of the step (not with bodies of prescribed velocity,
+    /// whose records the passes scale).
+    bool
+    corrects_initial_velocities() const
+    {
+      return !(prescribed != nullptr && prescribed->any());
+    }
+
+    /**
+     * USAVG's first half: the bodies' velocities at every contact node
+     * from the momenta at the start of the step (scattered as in the
+     * momentum update, with the geometry the contact reads), corrected by
+     * the contact decided afresh on them, and by the fixed and slip walls.
+     * Nothing is recorded: forces, heat and the pairs' carried pull are
+     * those of the momentum update that follows.
+     */
+    void
+    correct_initial_velocities(const Grid<dim> &              grid,
+                               const BoundaryConditions<dim> &boundary_conditions,
+                               const double                   time_step,
+                               const unsigned int             n_owned_nodes);
+
     /**
      * The bodies' velocities at every contact node from their momenta
      * (and, in the momentum-update pass, forces and @p gravity over
@@ -288,6 +321,14 @@ namespace sable::mpm
     /// velocity again, and (with @p record_work) the work they did.
     void
     hold_drivers(const bool before, const bool record_work, const unsigned int n_owned_nodes);
+
+    /// Every record's velocity from its momentum (@p with_forces: plus
+    /// its force and @p gravity over @p time_step, keeping the velocity
+    /// before them as old_velocity), and the correction's starting value.
+    void
+    compute_velocities(const bool            with_forces,
+                       const Tensor<1, dim> &gravity,
+                       const double          time_step);
 
     /// Each record's correction: its velocity after the contact and the
     /// walls less the one correct_velocities() started from (which the
