@@ -194,8 +194,26 @@ namespace sable::mpm
           }
         if constexpr (update_strain_rates)
           if (measure && !driven)
-            cell_loss -= strain_time_step *
-                         scalar_product(Layout::volume_stress(props), correction_gradient);
+            {
+              // the strain energy with L less that with L - G: dt V (sigma
+              // + dt C : (L - G/2)) : G, the elastic tangent's term of second
+              // order in the step (the first-order count alone took 10% more
+              // than two disks lost in a head-on impact at CFL 0.5)
+              const Tensor<2, dim> midpoint = L - 0.5 * correction_gradient;
+              const Tensor<2, dim> strain   = 0.5 * (midpoint + transpose(midpoint));
+              const double shear  = body < body_shear.size() ? body_shear[body] : 0.;
+              const double lambda = body < body_lambda.size() ? body_lambda[body] : 0.;
+              Tensor<2, dim>       tangent_stress = 2. * shear * strain;
+              const double         volumetric     = lambda * trace(strain);
+              for (unsigned int d = 0; d < dim; ++d)
+                tangent_stress[d][d] += volumetric;
+              const double volume = determinant(Layout::deformation_gradient(props)) *
+                                    props[Layout::initial_volume];
+              cell_loss -= strain_time_step *
+                           scalar_product(Layout::volume_stress(props) +
+                                            (strain_time_step * volume) * tangent_stress,
+                                          correction_gradient);
+            }
         if constexpr (update_strain_rates)
           {
             velocity_gradients[particle.get_local_index()] = L;

@@ -119,12 +119,16 @@ namespace sable::mpm
         }
     }
 
+    std::vector<double> lambda, shear;
     for (const auto &body : parameters.bodies)
       {
         materials.push_back(create_material(body.material));
         body_wave_speed.push_back(materials.back()->wave_speed());
         layout.n_history = std::max(layout.n_history, materials.back()->n_history());
+        lambda.push_back(body.material.bulk_modulus - 2. / 3. * body.material.shear_modulus);
+        shear.push_back(body.material.shear_modulus);
       }
+    grid_to_particle.set_elastic_moduli(lambda, shear);
     layout.initial_position_stored = parameters.displacement_output;
     layout.affine_stored           = parameters.affine_transfers;
     // the flatter body's normal comes from its faces, not from the

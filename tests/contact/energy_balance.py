@@ -28,13 +28,17 @@ corrections, perfectly inelastic at each node, take about a tenth of the
 energy (measured 9.8% frictionless at CFL 0.1), and with it counted the
 balance holds within 1% at every row at CFL 0.1 (measured -0.86% during
 the impact, +0.29% at worst after it; without it the drift would be -10%).
-What remains is the time integration's: at CFL 0.5 and 0.25 the balance
-ends +1.6% and +0.7% frictionless; the test checks that the end value
-falls as the step does. Ten times softer (E = 1 MPa), the same disks
-end at CFL 0.5 within 0.5% of their end at CFL 0.1 (measured +0.71% and
-+0.48%): the points at contact nodes take USAVG's midpoint rule, the
+What remains falls with the step: at CFL 0.5, 0.25 and 0.1 the balance
+ends +1.2%, +0.5% and +0.4% frictionless; the test checks that the end
+value falls as the step does. Ten times softer (E = 1 MPa), the same disks
+end at CFL 0.5 within 0.5% of their end at CFL 0.1 (measured +0.49% and
++0.46%): the points at contact nodes take USAVG's midpoint rule, the
 contact acting on its first half's velocities too (+1.67% against +0.52%
-while they took MUSL's whole step). In 3D, unequal spheres meeting slightly
+while they took MUSL's whole step). On a grid half as fine their kinetic
+plus strain energy only falls, and the loss counted exceeds what they lose
+by at most 0.5% of their energy (measured 0.26%; 1.03% while the strain
+part of the loss was counted to first order in the step only). In 3D,
+unequal spheres meeting slightly
 off-centre with mu = 0.3 (USAVG, CFL 0.5) lose 5.0% in the impact and the
 balance stays within 1.5% (measured -1.15% during the impact, +0.65% at
 worst after it).
@@ -46,7 +50,7 @@ half of it (measured 407 J of 617 J), so that it is not lost either.
 Counted from the nodal velocities the correction leaves, the heat of the
 same pile exceeded the gravitational energy released and the guard
 stopped the run at 0.82 s with +67%. With the impacts' loss counted the
-balance never gains more than 8% (measured +6.2% at CFL 0.5, +2.1% at
+balance never gains more than 8% (measured +5.6% at CFL 0.5, +1.6% at
 CFL 0.25: the gain of MUSL's step where grains touch, which falls with
 the square of the step; before the loss was counted the balance showed
 -26%). No point is lost, and points of two grains never come closer than
@@ -209,7 +213,7 @@ for mu in (0.0, 0.3):
 # acts on the momenta at the start of the step): the same disks made ten
 # times softer (E = 1 MPa, a longer impact, more of it ringing) keep the
 # step's part of the balance, CFL 0.5's end value less CFL 0.1's, below
-# 0.5% of the energy (measured +0.71% against +0.48%; +1.67% against
+# 0.5% of the energy (measured +0.49% against +0.46%; +1.67% against
 # +0.52% while those points took MUSL's whole step)
 soft_disks = [dict(body, **{"Young's modulus": 1e6}) for body in headon_disks]
 ends = []
@@ -219,6 +223,19 @@ for cfl in (0.5, 0.1):
     ends.append(rows[-1]["energy_drift"])
 check("unequal soft disks head-on, USAVG: the balance at CFL 0.5 within 0.5% of CFL 0.1's at the end",
       abs(ends[0] - ends[1]) <= 0.005, f"{ends[0]:+.4f} at CFL 0.5, {ends[1]:+.4f} at CFL 0.1")
+# the strain part of the impacts' loss to second order in the step: on a
+# grid half as fine (8 and 4.8 cells per diameter) the disks' kinetic plus
+# strain energy only falls, and the loss counted exceeds what they lose by
+# at most 0.5% of their energy at CFL 0.5 (measured 0.26%, 0.45% at CFL
+# 0.1; 1.03% with the strain part to first order)
+_, _, rows = run("impact_soft_coarse", dict(headon, **{"Contact/Friction coefficient": 0,
+                                                     "Grid/Subdivisions": "60, 20"}), soft_disks)
+mechanical = [r["kinetic_energy"] + r["strain_energy"] for r in rows]
+lost = mechanical[0] - mechanical[-1]
+check("... 8 cells per diameter, CFL 0.5: kinetic + strain energy never above the initial, and the "
+      "impacts' loss within 0.5% of the energy of what the disks lose",
+      max(mechanical) <= mechanical[0] * (1 + 1e-9) and abs(rows[-1]["impact_loss"] - lost) <= 0.005 * mechanical[0],
+      f"lost {lost:.2f} J of {mechanical[0]:.1f} J, impact_loss {rows[-1]['impact_loss']:.2f} J")
 
 # the same in 3D: unequal spheres (0.15 and 0.1 m, 9.6 and 6.4 cells per
 # diameter) meeting slightly off-centre with mu = 0.3

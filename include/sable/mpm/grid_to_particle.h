@@ -82,19 +82,29 @@ namespace sable::mpm
      * changed by dv, the points' velocities change by dv_p = sum N dv,
      * and the loss is -m_p dv_p . (v_p before + v_p after)/2 in the
      * momentum update; in the pass whose velocities drive the stress
-     * update, -dt V_p sigma_p : sum dv grad N, the strain energy the
-     * correction kept from being stored. Moving walls are left out (their
+     * update, the strain energy the correction kept from being stored,
+     * -dt V_p (sigma_p + dt C : (L_p - G_p / 2)) : G_p with G_p = sum dv
+     * grad N and C the body's elastic tangent (set_elastic_moduli()): the
+     * difference of the strain energies the corrected and the uncorrected
+     * velocity gradient L_p and L_p - G_p store over the step, exact for a
+     * linear elastic increment. Moving walls are left out (their
      * work is boundary work), and so are scenes with prescribed-velocity
-     * bodies (their work on the others is already counted). Exact to first
-     * order in each correction: the pile's total agrees with the energy
-     * that leaves kinetic and strain energy to the time integration's
-     * error (doc/validation.md, "Energy balance of a settling pile").
+     * bodies (their work on the others is already counted).
      */
     void
     measure_corrections(const bool measure, const BoundaryConditions<dim> *walls)
     {
       measuring = measure;
       boundary  = walls;
+    }
+
+    /// Per body, the Lame constants lambda = K - 2 G / 3 and G of its
+    /// elastic tangent, for the strain part of the correction loss.
+    void
+    set_elastic_moduli(const std::vector<double> &lambda, const std::vector<double> &shear)
+    {
+      body_lambda = lambda;
+      body_shear  = shear;
     }
 
     /// With measure_corrections(): mark the owned cells with points whose
@@ -207,6 +217,7 @@ namespace sable::mpm
     const Grid<dim> &            grid;
     const NodalFields<dim> &     fields;
     const std::vector<double> &  body_wave_speed;
+    std::vector<double>          body_lambda, body_shear;
     std::vector<Tensor<2, dim>> &velocity_gradients;
     const PrescribedVelocities<dim> *prescribed = nullptr;
     ParticleLayout<dim>              layout;
