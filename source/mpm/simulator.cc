@@ -557,9 +557,10 @@ namespace sable::mpm
   Simulator<dim>::update_stresses_from_initial_momenta()
   {
     // The contact acts on the momenta at the start of the step too: each
-    // body's records take the momentum update's scatter (with the geometry
-    // the contact reads) and the contact decided afresh on them, so that
-    // the points at contact nodes take the midpoint rule as well (with
+    // body's records take the geometry the contact reads (as in the
+    // momentum update, but not the forces) and the contact decided afresh
+    // on them, so that the points at contact nodes take the midpoint rule
+    // as well (with
     // their cells' whole strain update from the remapped momenta, as under
     // MUSL, two unequal disks meeting head-on ended at +1.7% of their
     // energy at CFL 0.5, +0.7% so; uncorrected, a disk resting on a block
@@ -588,15 +589,11 @@ namespace sable::mpm
       }
     {
       TimerOutput::Scope scope(timer, "particles to grid");
-      if (contact_in_first_half)
-        particle_to_grid.template scatter<GridPass::momentum_update>(particle_cells,
-                                                                     grid,
-                                                                     nodal_fields,
-                                                                     contact.get());
-      else
-        particle_to_grid.template scatter<GridPass::initial_momenta>(particle_cells,
-                                                                     grid,
-                                                                     nodal_fields,
+      particle_to_grid.template scatter<GridPass::initial_momenta>(particle_cells,
+                                                                   grid,
+                                                                   nodal_fields,
+                                                                   contact_in_first_half ?
+                                                                     contact.get() :
                                                                      nullptr);
     }
     {

@@ -11,7 +11,7 @@ namespace sable::mpm
    * strain update (mass and momentum only); USAVG also maps the momenta at
    * the start of the step, for the first half of its strain update (mass
    * and momentum only, no heat counted; with contact, the bodies' records
-   * take the momentum update's scatter, see
+   * also take the geometry the contact reads, not the forces, see
    * MultiBodyContact::correct_initial_velocities()).
    */
   enum class GridPass

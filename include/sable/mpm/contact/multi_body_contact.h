@@ -101,14 +101,17 @@ namespace sable::mpm
     {
       const unsigned int body = static_cast<unsigned int>(properties[ParticleLayout<dim>::body]);
       const double       mass = properties[ParticleLayout<dim>::mass];
+      // the passes whose contact decides afresh sum the geometry it reads
+      // (USAVG's first half: all of it but the forces)
+      constexpr bool geometry = pass != GridPass::remapped_momenta;
       // one root per point, only where the detection reads it
-      const double spacing = pass == GridPass::momentum_update && with_position ?
+      const double spacing = geometry && with_position ?
                                ParticleLayout<dim>::seeding_spacing(properties) :
                                0.;
       // the normal of the face the point lies under (unit length, turned
       // with its body), if it carries one
       Tensor<1, dim> surface_normal;
-      if (pass == GridPass::momentum_update && any_body_with_normals && bodies_with_normals[body])
+      if (geometry && any_body_with_normals && bodies_with_normals[body])
         surface_normal = layout.reference_surface_normal(properties);
       const bool carries_normal = surface_normal.norm_square() > 0;
       if (carries_normal)
@@ -116,7 +119,7 @@ namespace sable::mpm
       // the vector to the body's surface, carried by the material's
       // deformation (F turns and stretches it with the point)
       const bool     surface_vectors =
-        pass == GridPass::momentum_update && with_position && layout.to_surface_stored;
+        geometry && with_position && layout.to_surface_stored;
       Tensor<1, dim> to_surface;
       if (surface_vectors)
         to_surface = ParticleLayout<dim>::deformation_gradient(properties) *
@@ -133,9 +136,10 @@ namespace sable::mpm
           record.mass += weight;
           for (unsigned int d = 0; d < dim; ++d)
             record.momentum[d] += weight * velocity_at(v, d);
-          if constexpr (pass == GridPass::momentum_update)
+          if constexpr (geometry)
             {
-              record.force -= volume_stress * shape.gradients[v];
+              if constexpr (pass == GridPass::momentum_update)
+                record.force -= volume_stress * shape.gradients[v];
               record.mass_gradient += mass * shape.gradients[v];
               if (with_position)
                 {
