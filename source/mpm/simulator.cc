@@ -558,17 +558,16 @@ namespace sable::mpm
   {
     // The contact acts on the momenta at the start of the step too: each
     // body's records take the geometry the contact reads (as in the
-    // momentum update, but not the forces) and the contact decided afresh
-    // on them, so that the points at contact nodes take the midpoint rule
-    // as well (with
-    // their cells' whole strain update from the remapped momenta, as under
-    // MUSL, two unequal disks meeting head-on ended at +1.7% of their
-    // energy at CFL 0.5, +0.7% so; uncorrected, a disk resting on a block
-    // gained energy at each of its small bounces). The points whose cells
-    // reach a friction wall's node, whose decision is the momentum
-    // update's, and all points near contact nodes in scenes with bodies of
-    // prescribed velocity take the whole strain update from the remapped
-    // momenta. The others read the single field.
+    // momentum update, but not the forces) and the contact, decided afresh
+    // on them, corrects them, so that the points at contact nodes take the
+    // midpoint rule as well (uncorrected, a disk resting on a block gained
+    // energy at each of its small bounces; on MUSL's whole step, two
+    // unequal soft disks meeting head-on gained more at CFL 0.5,
+    // doc/mpm.md, "Stability"). The points whose cells reach a friction
+    // wall's node, whose decision is the momentum update's, and all points
+    // near contact nodes in scenes with bodies of prescribed velocity take
+    // the whole strain update from the remapped momenta. The others read
+    // the single field.
     const double half_step = 0.5 * state.time_step;
     contact_in_first_half  = contact && contact->corrects_initial_velocities();
     const bool split_cells = (contact && !contact_in_first_half) ||
