@@ -87,7 +87,11 @@ namespace sable::mpm
      * grad N and C the body's elastic tangent (set_elastic_moduli()): the
      * difference of the strain energies the corrected and the uncorrected
      * velocity gradient L_p and L_p - G_p store over the step, exact for a
-     * linear elastic increment. Moving walls are left out (their
+     * linear elastic increment. In the first of USAVG's two halves the
+     * tangent's term is dt C : G/2 instead: the stress that half leaves
+     * drives the momentum update's internal force, which works on the
+     * uncorrected velocities (the exact balance of USAVG's step for a
+     * linear elastic body). Moving walls are left out (their
      * work is boundary work), and so are scenes with prescribed-velocity
      * bodies (their work on the others is already counted).
      */
@@ -140,18 +144,31 @@ namespace sable::mpm
     /// The velocity gradients of the strain update (by local index); with
     /// @p cell_time_steps only for the points of the owned cells c where
     /// (*cell_time_steps)[c] is not 0 (those that update their stress).
+    /// @p first_half: the first of USAVG's two halves, whose stress the
+    /// momentum update's internal force then reads (measure_corrections()).
     Report
     compute_strain_rates(Particles::ParticleHandler<dim> &particle_handler,
                          const ParticleCells<dim> &       cells,
                          const MultiBodyContact<dim> *    contact,
                          const double                     strain_time_step,
-                         const std::vector<double> *      cell_time_steps = nullptr) const
+                         const std::vector<double> *      cell_time_steps = nullptr,
+                         const bool                       first_half      = false) const
     {
       return layout.affine_stored ?
-               transfer<false, true, true>(
-                 particle_handler, cells, contact, strain_time_step, 0., cell_time_steps) :
-               transfer<false, true, false>(
-                 particle_handler, cells, contact, strain_time_step, 0., cell_time_steps);
+               transfer<false, true, true>(particle_handler,
+                                           cells,
+                                           contact,
+                                           strain_time_step,
+                                           0.,
+                                           cell_time_steps,
+                                           first_half) :
+               transfer<false, true, false>(particle_handler,
+                                            cells,
+                                            contact,
+                                            strain_time_step,
+                                            0.,
+                                            cell_time_steps,
+                                            first_half);
     }
 
     /// Both in one pass, from the same nodal velocities (USL).
@@ -191,6 +208,8 @@ namespace sable::mpm
       const double *wall_correction;
       double        time_step;
       double        alpha;
+      /// the first of USAVG's two halves (compute_strain_rates())
+      bool first_half;
     };
 
     /// One cell's points in a pass of transfer(); with @p measure, returns
@@ -212,7 +231,8 @@ namespace sable::mpm
              const MultiBodyContact<dim> *    contact,
              const double                     time_step,
              const double                     pic_fraction,
-             const std::vector<double> *      cell_time_steps = nullptr) const;
+             const std::vector<double> *      cell_time_steps = nullptr,
+             const bool                       first_half      = false) const;
 
     const Grid<dim> &            grid;
     const NodalFields<dim> &     fields;
