@@ -20,7 +20,8 @@ namespace sable::mpm
   {
     const NamedChoice<UpdateScheme> update_schemes{{"USL", UpdateScheme::usl},
                                                    {"MUSL", UpdateScheme::musl},
-                                                   {"USAVG", UpdateScheme::usavg}};
+                                                   {"USAVG", UpdateScheme::usavg},
+                                                   {"automatic", UpdateScheme::automatic}};
     const NamedChoice<OutputFormat> output_formats{{"vtu", OutputFormat::vtu},
                                                    {"hdf5", OutputFormat::hdf5}};
     const NamedChoice<ShapeFunctions> shape_function_kinds{{"linear", ShapeFunctions::linear},
@@ -68,7 +69,7 @@ namespace sable::mpm
 
     prm.enter_subsection("Solver");
     prm.declare_entry("Update scheme",
-                      "MUSL",
+                      "automatic",
                       update_schemes.pattern(),
                       "USL updates stresses with the grid velocities of the "
                       "momentum update; MUSL first maps the updated particle "
@@ -78,12 +79,14 @@ namespace sable::mpm
                       "updates the stresses in two halves, with the momenta "
                       "at the start of the step mapped to the grid before the "
                       "momentum update and with MUSL's remapped momenta after "
-                      "it (a midpoint rule; points near contact nodes and "
-                      "friction walls take MUSL's whole step): bodies that "
-                      "ring while they move or spin across the grid keep "
-                      "their energy where MUSL gains it at CFL numbers above "
-                      "0.25 (doc/mpm.md, Spinning bodies); a third to a half "
-                      "more time per step.");
+                      "it (a midpoint rule; points near friction walls take "
+                      "MUSL's whole step): bodies that touch, or ring while "
+                      "they move or spin across the grid, keep their energy "
+                      "where MUSL gains it at CFL numbers above 0.25 "
+                      "(doc/mpm.md, Stability); about 1.4 times MUSL's time "
+                      "per step. automatic: USAVG in a scene with contact "
+                      "between bodies (Contact/Model not none, two or more "
+                      "bodies), MUSL otherwise.");
     prm.declare_entry("PIC fraction",
                       "0",
                       Patterns::Double(),

@@ -80,6 +80,14 @@ namespace sable::mpm
   Simulator<dim>::setup_models()
   {
     check_parameters(parameters);
+    // where bodies touch, MUSL's own step makes energy at CFL numbers
+    // above 0.25 and USAVG's midpoint rule does not (doc/mpm.md,
+    // "Stability"); a single body keeps MUSL's cheaper step
+    if (parameters.update_scheme == UpdateScheme::automatic)
+      parameters.update_scheme =
+        parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 ?
+          UpdateScheme::usavg :
+          UpdateScheme::musl;
     // every body must lie inside the grid (a grain held by a face of it:
     // its centre; along a periodic axis: its centre, and it may not be
     // longer than the period)
@@ -375,7 +383,11 @@ namespace sable::mpm
           << " material points in " << parameters.bodies.size() << " bod"
           << (parameters.bodies.size() == 1 ? "y" : "ies") << ", "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s), "
-          << MultithreadInfo::n_threads() << " thread(s) per rank" << std::endl;
+          << MultithreadInfo::n_threads() << " thread(s) per rank, update scheme "
+          << (parameters.update_scheme == UpdateScheme::usl  ? "USL" :
+              parameters.update_scheme == UpdateScheme::musl ? "MUSL" :
+                                                               "USAVG")
+          << ", CFL " << parameters.cfl << std::endl;
     if (parallel)
       print_balance();
     print_seeding_note();

@@ -1,6 +1,6 @@
 """Reading a run's particle output (particles.pvd and its VTU pieces) in
-the scene tests, and the closest approach of two bodies' points. Needs
-numpy and meshio (Debian's python3-numpy, python3-meshio)."""
+the scene tests, the closest approach of two bodies' points, and how far
+one body's points reach into another. Needs numpy and meshio (Debian's python3-numpy, python3-meshio)."""
 import math
 import os
 from xml.etree import ElementTree
@@ -48,3 +48,51 @@ def closest_other_body(x, body, width, period=None):
         d[body[a][:, None] == body[b][None, :]] = np.inf
         best = min(best, d.min())
     return best
+
+
+def convex_hull(points):
+    """Vertices of the convex hull of 2D `points`, counter-clockwise
+    (Andrew's monotone chain)."""
+    pts = sorted(set(map(tuple, points)))
+    if len(pts) < 3:
+        return np.array(pts)
+
+    def chain(sequence):
+        out = []
+        for p in sequence:
+            while len(out) >= 2 and ((out[-1][0] - out[-2][0]) * (p[1] - out[-2][1]) -
+                                     (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0])) <= 0:
+                out.pop()
+            out.append(p)
+        return out[:-1]
+
+    return np.array(chain(pts) + chain(reversed(pts)))
+
+
+def deepest_in_other_hull(x, body):
+    """How far the points of one body reach into the convex hull of another
+    body's points (2D): the largest distance from such a point to the
+    hull's nearest edge (positive inside, negative: the least clearance of
+    any point outside, within a bounding box; -inf if no point comes near).
+    A grain's points fill it to within a fraction of a spacing of its
+    surface, so a point of another grain inside that hull lies inside the
+    grain: interpenetration, whatever the seeding. For convex grains
+    (disks, boxes)."""
+    deepest = -math.inf
+    for k in np.unique(body):
+        own = x[body == k]
+        hull = convex_hull(own)
+        if len(hull) < 3:
+            continue
+        edges = np.roll(hull, -1, axis=0) - hull
+        inward = np.stack([-edges[:, 1], edges[:, 0]], axis=1)
+        inward /= np.linalg.norm(inward, axis=1)[:, None]
+        spread = np.linalg.norm(own.max(axis=0) - own.min(axis=0))
+        low, high = own.min(axis=0) - 0.1 * spread, own.max(axis=0) + 0.1 * spread
+        other = x[(body != k) & np.all((x >= low) & (x <= high), axis=1)]
+        if len(other) == 0:
+            continue
+        # distance inside each edge's line; inside the hull: the least of them
+        inside = ((other[:, None, :] - hull[None, :, :]) * inward[None, :, :]).sum(axis=2).min(axis=1)
+        deepest = max(deepest, inside.max())
+    return deepest

@@ -3,13 +3,14 @@
 # valgrind's callgrind (they do not depend on the load of a shared machine).
 # Scene: 64 elastic disks (R = 0.05 m, 8 cells per diameter, 2x2 points per
 # cell) in a square lattice, each touching its neighbours, on a fixed floor
-# under gravity, 2D, MUSL, one thread, output off, 20 steps (or the number
-# given). Variants: the defaults, each contact option changed alone, the
-# update schemes USL and USAVG, the disks seeded conforming or on the
+# under gravity, 2D, the default update scheme (USAVG where bodies touch),
+# one thread, output off, 20 steps (or the number given). Variants: the
+# defaults, each contact option changed alone, the update schemes USL and
+# MUSL, the disks seeded conforming or on the
 # lattice (the default seeds them clipped), the floor a friction wall
-# (either contact criterion), the GIMP functions (with MUSL, with USL, with USL and the
+# (either contact criterion), the GIMP functions (with the default scheme, with USL, with USL and the
 # affine transfers), and contact 'none' (one velocity field: the
-# single-field step).
+# single-field step, under MUSL, the default for a scene without contact).
 # Prints the instructions of Simulator::advance() (the steps) per variant
 # and its ratio to the default.
 # Usage: contrib/benchmarks/contact_options/callgrind.sh [build dir] [steps]
@@ -69,7 +70,7 @@ variants=("defaults|"
           "Impulse scaling = off|  set Impulse scaling = off"
           "Passes = momentum update|  set Passes = momentum update"
           "Update scheme = USL|||| subsection Solver\n  set Update scheme = USL\nend"
-          "Update scheme = USAVG|||| subsection Solver\n  set Update scheme = USAVG\nend"
+          "Update scheme = MUSL|||| subsection Solver\n  set Update scheme = MUSL\nend"
           "Seeding = conforming||  set Seeding = conforming"
           "Seeding = lattice||  set Seeding = lattice"
           "floor: friction wall, surface position|||  set Types = 2: friction\n  set Friction coefficients = 2: 0.3"

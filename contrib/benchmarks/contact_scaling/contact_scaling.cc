@@ -60,6 +60,10 @@ namespace
     SimulatorParameters<2> parameters;
     parameters.end_time         = 1e9;
     parameters.print_timings    = false;
+    // MUSL with and without contact, so that the ratio is contact's own
+    // cost (the default for contact between bodies, USAVG, costs about
+    // 1.4 times MUSL's step besides: doc/benchmarks.md, "USAVG")
+    parameters.update_scheme    = UpdateScheme::musl;
     parameters.contact.model    = model;
     parameters.contact.friction = 0.3;
     parameters.contact.multi_body_nodes = multi_body_nodes;

@@ -39,7 +39,10 @@ namespace sable::mpm
   {
     usl,
     musl,
-    usavg
+    usavg,
+    /// USAVG where bodies can touch one another (contact on, two or more
+    /// bodies), MUSL otherwise; resolved when the simulator sets up its models
+    automatic
   };
 
   /// File format of the particle (and grid) output.
@@ -56,7 +59,7 @@ namespace sable::mpm
     unsigned int maximum_steps = 0; ///< 0: no limit
     double       cfl           = 0.5;
 
-    UpdateScheme update_scheme = UpdateScheme::musl;
+    UpdateScheme update_scheme = UpdateScheme::automatic;
     /// Fraction of PIC in the particle velocity update (0 = pure FLIP).
     double pic_fraction = 0.;
     /// Solver/Affine transfers: each point carries its velocity gradient C
