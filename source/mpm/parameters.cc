@@ -28,6 +28,12 @@ namespace sable::mpm
                                                            {"gimp", ShapeFunctions::gimp}};
   } // namespace
 
+  std::string
+  update_scheme_name(const UpdateScheme scheme)
+  {
+    return update_schemes.name(scheme);
+  }
+
   template <int dim>
   void
   declare_parameters(ParameterHandler &prm, const unsigned int n_bodies)

@@ -80,14 +80,13 @@ namespace sable::mpm
   Simulator<dim>::setup_models()
   {
     check_parameters(parameters);
+    const bool bodies_touch =
+      parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1;
     // where bodies touch, MUSL's own step makes energy at CFL numbers
     // above 0.25 and USAVG's midpoint rule does not (doc/mpm.md,
     // "Stability"); a single body keeps MUSL's cheaper step
     if (parameters.update_scheme == UpdateScheme::automatic)
-      parameters.update_scheme =
-        parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 ?
-          UpdateScheme::usavg :
-          UpdateScheme::musl;
+      parameters.update_scheme = bodies_touch ? UpdateScheme::usavg : UpdateScheme::musl;
     // every body must lie inside the grid (a grain held by a face of it:
     // its centre; along a periodic axis: its centre, and it may not be
     // longer than the period)
@@ -148,8 +147,8 @@ namespace sable::mpm
                body.shape == BodyParameters<dim>::Shape::mesh;
       });
     layout.surface_normal_stored =
-      parameters.contact.model != ContactParameters::Model::none && parameters.bodies.size() > 1 &&
-      parameters.contact.normals == ContactParameters::Normals::flatter_body && any_faces;
+      bodies_touch && parameters.contact.normals == ContactParameters::Normals::flatter_body &&
+      any_faces;
     // the faces' positions for the contact's gap, where the face normals
     // tell which records lie under one face
     layout.to_surface_stored =
@@ -157,8 +156,7 @@ namespace sable::mpm
       parameters.contact.detection == ContactParameters::Detection::surface_position;
     particle_to_grid.set_layout(layout);
     grid_to_particle.set_layout(layout);
-    if (parameters.contact.model != ContactParameters::Model::none &&
-        parameters.bodies.size() > 1)
+    if (bodies_touch)
       {
         std::vector<unsigned int> groups;
         for (const auto &body : parameters.bodies)
@@ -384,10 +382,8 @@ namespace sable::mpm
           << (parameters.bodies.size() == 1 ? "y" : "ies") << ", "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s), "
           << MultithreadInfo::n_threads() << " thread(s) per rank, update scheme "
-          << (parameters.update_scheme == UpdateScheme::usl  ? "USL" :
-              parameters.update_scheme == UpdateScheme::musl ? "MUSL" :
-                                                               "USAVG")
-          << ", CFL " << parameters.cfl << std::endl;
+          << update_scheme_name(parameters.update_scheme) << ", CFL " << parameters.cfl
+          << std::endl;
     if (parallel)
       print_balance();
     print_seeding_note();

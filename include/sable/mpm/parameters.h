@@ -152,6 +152,10 @@ namespace sable::mpm
   bool
   may_change_on_resume(const std::string &name);
 
+  /// The name of @p scheme as the parameter file writes it ("MUSL", ...).
+  std::string
+  update_scheme_name(const UpdateScheme scheme);
+
   /// Declare every MPM entry (besides the common ones) for @p n_bodies bodies.
   template <int dim>
   void
