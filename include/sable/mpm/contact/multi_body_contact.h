@@ -157,7 +157,7 @@ namespace sable::mpm
                     weight * (shape.image_for_node(location, v) + to_surface);
                   record.mass_on_surface += weight;
                 }
-              if (with_regression)
+              if (with_regression && !planes_fitted)
                 samples[fields.index_of(record)].push_back(
                   {shape.image_for_node(location, v), weight});
               if (with_traction)
@@ -176,8 +176,9 @@ namespace sable::mpm
     zero_records()
     {
       fields.zero_records();
-      for (auto &record_samples : samples)
-        record_samples.clear();
+      // the points have not moved since the first half: its fitted
+      // planes stand for the momentum update
+      planes_fitted = with_regression;
     }
 
     /// Whether USAVG's first half can take the contact on the velocities
@@ -234,13 +235,13 @@ namespace sable::mpm
       layout = particle_layout;
     }
 
-    /// Per body, the radius of curvature of its surface and its volume,
-    /// for 'Normals = flatter body' (BardenhagenContact::set_body_shapes()).
+    /// Per body, the radius of curvature of its surface (infinite for
+    /// bodies with faces) and its volume, for 'Normals = flatter body'
+    /// (BardenhagenContact::set_body_shapes()). With 'flatter body', nodes
+    /// where only round bodies meet take the fitted plane's normal
+    /// (fit_separating_planes()).
     void
-    set_body_shapes(const std::vector<double> &surface_radii, const std::vector<double> &volumes)
-    {
-      model.set_body_shapes(surface_radii, volumes);
-    }
+    set_body_shapes(const std::vector<double> &surface_radii, const std::vector<double> &volumes);
 
     /// The bodies of prescribed velocity (kept by the caller), whose
     /// records correct_velocities() sets to their velocity: the kernel
@@ -353,7 +354,8 @@ namespace sable::mpm
     /// With 'Normals = logistic regression': each record's fitted normal
     /// from the points sampled at its node (threaded over the contact
     /// nodes; each node is fitted on its own); with 'fitted at edges' only
-    /// at nodes where two bodies meet at an edge, zero elsewhere.
+    /// at nodes where two bodies meet at an edge, with 'flatter body' only
+    /// at nodes where only round bodies meet; zero elsewhere.
     void
     fit_separating_planes(const Grid<dim> &grid);
 
@@ -382,7 +384,11 @@ namespace sable::mpm
     ParticleLayout<dim>     layout;
     const bool              with_traction;
     const bool              with_position;
-    const bool              with_regression;
+    bool                    with_regression;
+    /// 'flatter body' in a scene of two or more round bodies: the planes
+    /// are fitted at the nodes where only round bodies meet
+    bool                    fit_round_pairs = false;
+    std::vector<bool>       round_body;
     BodyFields<dim>         fields;
     /// per relevant node, whether a wall acts there (from
     /// mark_contact_nodes())
@@ -392,6 +398,9 @@ namespace sable::mpm
     /// body of the plane fitted between them and the other bodies' points
     std::vector<std::vector<NodeSample<dim>>> samples;
     std::vector<Tensor<1, dim>>               fitted_normals;
+    /// whether fitted_normals hold this step's planes (from USAVG's first
+    /// half; reset by mark_contact_nodes())
+    bool                    planes_fitted = false;
     BardenhagenContact<dim> model;
 
     /// the bodies some of whose points carry a face normal (found at the
