@@ -501,8 +501,13 @@ namespace sable::mpm
     const unsigned int             n_owned_nodes)
   {
     compute_velocities(false, Tensor<1, dim>(), time_step);
+    // the points do not move before the momentum update: these planes
+    // stand for it too
     if (with_regression)
-      fit_separating_planes(grid);
+      {
+        fit_separating_planes(grid);
+        planes_fitted = true;
+      }
     if (parameters.on_momentum_update || parameters.on_strain_update)
       model.apply_to_initial(fields,
                              grid.node_spacing(),

@@ -176,9 +176,6 @@ namespace sable::mpm
     zero_records()
     {
       fields.zero_records();
-      // the points have not moved since the first half: its fitted
-      // planes stand for the momentum update
-      planes_fitted = with_regression;
     }
 
     /// Whether USAVG's first half can take the contact on the velocities
