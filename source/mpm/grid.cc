@@ -1,6 +1,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
 
 #include <sable/mpm/grid.h>
 
@@ -81,6 +82,10 @@ namespace sable::mpm
     for (unsigned int d = 0; d < dim; ++d)
       huge[d] = std::numeric_limits<double>::max();
     spacing.assign(n_relevant_nodes(), huge);
+    // summed over the owned cells, then over the ranks: a node's support may
+    // reach cells beyond this rank's ghost layer (the fine cells of a
+    // hanging vertex whose master it is)
+    LinearAlgebra::distributed::Vector<double> volumes(node_partitioner);
     positions.assign(n_relevant_nodes(), Point<dim>());
     std::vector<types::global_dof_index> dofs(nodes_per_cell);
     // every node's position first: a folded cell's shifts need its masters'
@@ -107,6 +112,18 @@ namespace sable::mpm
               data.hanging = hanging_cells.size();
               hanging_cells.push_back(fold_hanging_vertices(cell, dofs, constraints));
             }
+          // each vertex's shape function integrates to a 2^dim-th of the
+          // cell; a hanging vertex's goes to its masters by their weights
+          const double share = cell->measure() / nodes_per_cell;
+          if (cell->is_locally_owned() && hanging)
+            {
+              const HangingCell &folded = hanging_cells[data.hanging];
+              for (unsigned int e = 0; e < folded.first[nodes_per_cell]; ++e)
+                volumes.local_element(folded.nodes[folded.slot[e]]) += folded.weight[e] * share;
+            }
+          else if (cell->is_locally_owned())
+            for (unsigned int v = 0; v < nodes_per_cell; ++v)
+              volumes.local_element(data.nodes[v]) += share;
           const auto [nodes, n_nodes] = cell_nodes(data);
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -118,6 +135,11 @@ namespace sable::mpm
                 spacing[nodes[k]][d] = std::min(spacing[nodes[k]][d], h);
             }
         }
+    volumes.compress(VectorOperation::add);
+    volumes.update_ghost_values();
+    support_volumes.resize(n_relevant_nodes());
+    for (unsigned int node = 0; node < n_relevant_nodes(); ++node)
+      support_volumes[node] = volumes.local_element(node);
     min_cell_size = Utilities::MPI::min(h_min, triangulation.get_communicator());
     if (shape_functions == ShapeFunctions::gimp)
       setup_lattice();

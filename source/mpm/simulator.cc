@@ -1144,19 +1144,22 @@ namespace sable::mpm
   {
     if (!contact)
       return;
-    std::vector<double> volumes(parameters.bodies.size(), 0.);
+    std::vector<double> volumes(parameters.bodies.size(), 0.), masses(volumes);
     for (const auto &particle : *particle_handler)
       {
-        const auto props = particle.get_properties();
-        volumes[static_cast<unsigned int>(props[layout.body])] += props[layout.initial_volume];
+        const auto         props = particle.get_properties();
+        const unsigned int body  = static_cast<unsigned int>(props[layout.body]);
+        volumes[body] += props[layout.initial_volume];
+        masses[body] += props[layout.mass];
       }
     Utilities::MPI::sum(volumes, communicator, volumes);
+    Utilities::MPI::sum(masses, communicator, masses);
     std::vector<double> surface_radii(parameters.bodies.size());
     for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
       surface_radii[b] = parameters.bodies[b].shape == BodyParameters<dim>::Shape::disk ?
                            parameters.bodies[b].radius :
                            std::numeric_limits<double>::infinity();
-    contact->set_body_shapes(surface_radii, volumes);
+    contact->set_body_shapes(surface_radii, volumes, masses);
   }
 
   template <int dim>

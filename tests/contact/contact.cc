@@ -50,6 +50,12 @@
 //    computes it gives, and a second pass on new velocities that reuses it
 //    gives those of one that computes it again: bit for bit, in 2D and 3D,
 //    for the 2001 and 2000 rules.
+// 6. Overlap at a node (the kernel): two bodies whose centroids put their
+//    surfaces a cell apart, approaching, act as touching when their
+//    reference volumes overfill the node's support by 10% (their normal
+//    velocities meet, to 1e-12), and stay free with the support filled to
+//    90%, with no support volume given, or with one of them filling only
+//    3% of the support (a corner, where the normal is unsure).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -384,6 +390,74 @@ namespace
       }
   }
 
+  /// The overlap test of the surface check (6. above): two bodies at one
+  /// node whose centroids say their surfaces are a cell apart, approaching
+  /// at 0.1 m/s, with reference volumes that fill @p filled of the node's
+  /// support, @p right_share of it the second body's. Returns the change of
+  /// the first body's normal velocity; with @p support_known the node's
+  /// support volume is given.
+  double
+  overlap_kernel(const double filled, const bool support_known, const double right_share = 1. / 3)
+  {
+    ContactParameters parameters;
+    parameters.model = Model::bardenhagen_2001;
+    BardenhagenContact<2> contact(parameters, {0, 1});
+    // two boxes of 1000 kg/m^3
+    const double infinite = std::numeric_limits<double>::infinity();
+    contact.set_body_shapes({infinite, infinite}, {1., 1.}, {1000., 1000.});
+    BodyFields<2> fields;
+    fields.clear(1);
+    fields.add(0, 0);
+    fields.add(0, 1);
+    fields.allocate();
+    const double dx = 0.1, dt = 1e-4, closing = 0.1;
+    auto &       left = fields.record(0, 0), &right = fields.record(0, 1);
+    right.mass = 1000. * right_share * dx * dx;
+    left.mass  = 1000. * (filled - right_share) * dx * dx;
+    left.mass_gradient  = Tensor<1, 2>({1., 0.});
+    right.mass_gradient = Tensor<1, 2>({-1., 0.});
+    // centroids 1.5 cells apart along the normal, points seeded half a
+    // cell apart: about a cell between the surfaces they give
+    left.mass_position  = left.mass * Tensor<1, 2>({-0.75 * dx, 0.});
+    right.mass_position = right.mass * Tensor<1, 2>({0.75 * dx, 0.});
+    left.mass_spacing   = left.mass * 0.5 * dx;
+    right.mass_spacing  = right.mass * 0.5 * dx;
+    left.new_velocity   = Tensor<1, 2>({closing / 2, 0.});
+    right.new_velocity  = Tensor<1, 2>({-closing / 2, 0.});
+    const std::vector<double> support = {dx * dx};
+    contact.apply(fields,
+                  {Tensor<1, 2>({dx, dx})},
+                  dt,
+                  1,
+                  true,
+                  MPI_COMM_SELF,
+                  nullptr,
+                  nullptr,
+                  BardenhagenContact<2>::Geometry::compute,
+                  support_known ? &support : nullptr);
+    return left.new_velocity[0] - closing / 2;
+  }
+
+  void
+  overlap_detection()
+  {
+    // overfilled: the bodies overlap, so the approach stops (the left body
+    // loses its closing speed times the right's share of the mass, 1/3.3)
+    const double stopped = overlap_kernel(1.1, true);
+    check("overlap: support overfilled by 10%, centroids a cell apart: the approach stops (change " +
+            std::to_string(stopped) + " m/s)",
+          std::abs(stopped + 0.1 / 3.3) < 1e-12);
+    // the same without the support volume, and with 90% of the support
+    // filled: the centroids' gap says apart, and nothing acts
+    check("overlap: the same without the node's support volume: no contact",
+          overlap_kernel(1.1, false) == 0.);
+    check("overlap: support filled to 90%: no contact", overlap_kernel(0.9, true) == 0.);
+    // a few points of one body in a corner of the support: not taken as
+    // overlap, the normal there being unsure
+    check("overlap: overfilled by 10%, one body in 3% of the support: no contact",
+          overlap_kernel(1.1, true, 0.03) == 0.);
+  }
+
   /// Random contact nodes (see 5. above) in @p fields.
   template <int dim>
   void
@@ -556,6 +630,7 @@ main(int argc, char **argv)
   head_on_collision();
   release_logic();
   impulse_scaling();
+  overlap_detection();
   resting_grain(BodyParameters<2>::Seeding::lattice);
   resting_grain(BodyParameters<2>::Seeding::conforming);
   for (const Model model : {Model::bardenhagen_2001, Model::bardenhagen_2000})

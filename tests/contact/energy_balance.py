@@ -24,8 +24,10 @@ and walls take from the points beyond the friction heat, counted at the
 points. Two unequal elastic disks (0.2 and 0.12 m, 16 and 9.6 cells per
 diameter) meet head-on at 4 m/s, frictionless and with mu = 0.3, under
 USAVG (so that their flight apart keeps its energy): the normal
-corrections, perfectly inelastic at each node, take about a tenth of the
-energy (measured 9.8% frictionless at CFL 0.1), and with it counted the
+corrections, perfectly inelastic at each node, take a few percent of the
+energy (measured 4.8% frictionless and 4.3% with mu = 0.3 at CFL 0.1; 9.8%
+frictionless before the overlap test of the contact's detection acted at
+nodes where one disk's centroid lay deep inside it), and with it counted the
 balance holds within 1% at every row at CFL 0.1 (measured -0.86% during
 the impact, +0.29% at worst after it; without it the drift would be -10%).
 The step's part of what remains, the end value at CFL 0.5 less that at
@@ -231,7 +233,7 @@ for mu in (0.0, 0.3):
         ends.append(rows[-1]["energy_drift"])
     e0 = rows[0]["kinetic_energy"]
     loss = rows[-1]["impact_loss"] / e0
-    check(f"{label}, CFL 0.1: the impacts take 5-20% of the energy", 0.05 <= loss <= 0.2,
+    check(f"{label}, CFL 0.1: the impacts take 2-20% of the energy", 0.02 <= loss <= 0.2,
           f"impact_loss {loss:.4f} of the initial kinetic energy, contact_heat "
           f"{rows[-1]['contact_heat'] / e0:.4f}")
     worst = max(abs(r["energy_drift"]) for r in rows)

@@ -32,7 +32,10 @@
 //    the partition of unity and sum_k grad N_k = 0, so the same round-off
 //    bounds hold; the grid has hanging vertices and changes during the run;
 //  - the same with GIMP shape functions (one rank), whose weights reach the
-//    nodes of the neighbouring cells.
+//    nodes of the neighbouring cells;
+//  - the nodes' support volumes (Grid::node_support_volumes(), which the
+//    contact's overlap test reads) add up to the grid's volume, 1e-12, on
+//    the initial grid and after the run (the adapted grid changed).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -213,6 +216,23 @@ namespace
       return masses;
     };
     const std::vector<double> masses = expected_masses(initial_sums);
+    // the nodes' support volumes (the integrals of their shape functions)
+    // add up to the grid's volume by the partition of unity, folded
+    // hanging vertices included
+    const auto check_support_volumes = [&](const std::string &when) {
+      const sable::mpm::Grid<dim> &grid    = simulator.get_grid();
+      const unsigned int           n_owned = grid.make_partitioner(1)->locally_owned_size();
+      double                       sum     = 0;
+      for (unsigned int node = 0; node < n_owned; ++node)
+        sum += grid.node_support_volumes()[node];
+      check_relative(name + "the nodes' support volumes add up to the grid's volume (" + when +
+                       ")",
+                     Utilities::MPI::sum(sum, communicator),
+                     1.,
+                     1e-12,
+                     1.);
+    };
+    check_support_volumes("initial grid");
     if (adaptive)
       {
         const unsigned int hanging = Utilities::MPI::sum(
@@ -295,6 +315,7 @@ namespace
     check_relative(name + "max over steps and bodies |body mass - initial body mass| / mass",
                    max_mass_change, 0., 1e-13, 1.);
     check(name + "particle count constant (" + std::to_string(n_particles) + ")", count_constant);
+    check_support_volumes("after the run");
     if (adaptive)
       check(name + "the grid changed during the run (" + std::to_string(cell_counts.size()) +
               " cell counts)",

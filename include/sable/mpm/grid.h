@@ -246,6 +246,14 @@ namespace sable::mpm
       return spacing;
     }
 
+    /// Per relevant node, the integral of its shape function: the volume
+    /// its support holds (summed over all ranks).
+    const std::vector<double> &
+    node_support_volumes() const
+    {
+      return support_volumes;
+    }
+
     /// Position of each relevant node.
     const std::vector<Point<dim>> &
     node_positions() const
@@ -330,6 +338,7 @@ namespace sable::mpm
     std::vector<CellData> cells;
     std::vector<HangingCell> hanging_cells;
     std::vector<Tensor<1, dim>> spacing;
+    std::vector<double>         support_volumes;
     std::vector<Point<dim>>     positions;
     Periodicity<dim>            periodic;
     double                min_cell_size = 0.;

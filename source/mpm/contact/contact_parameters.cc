@@ -109,7 +109,8 @@ namespace sable::mpm
                       "clouds touch). 'surface position': only where the "
                       "distance between the bodies' mass centroids at the "
                       "node, along the normal, shows that their surfaces "
-                      "meet within the step (see doc/mpm.md).");
+                      "meet within the step, or where their volumes there "
+                      "overfill the node's support (see doc/mpm.md).");
     prm.declare_entry("Round body surfaces",
                       "contact point",
                       round_surface_choices.pattern(),

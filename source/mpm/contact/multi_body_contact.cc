@@ -282,9 +282,10 @@ namespace sable::mpm
   template <int dim>
   void
   MultiBodyContact<dim>::set_body_shapes(const std::vector<double> &surface_radii,
-                                         const std::vector<double> &volumes)
+                                         const std::vector<double> &volumes,
+                                         const std::vector<double> &masses)
   {
-    model.set_body_shapes(surface_radii, volumes);
+    model.set_body_shapes(surface_radii, volumes, masses);
     // two round bodies' mass gradients at a coarse contact tilt by tens of
     // degrees from node to node, and a tilted normal lets the bodies slide
     // into each other under load: the settling pile's disks overlapped by
@@ -449,7 +450,8 @@ namespace sable::mpm
                   // periodic seam
                   grid.periodicity().any() ? nullptr : &grid.node_positions(),
                   with_regression ? &fitted_normals : nullptr,
-                  geometry);
+                  geometry,
+                  &grid.node_support_volumes());
     if (drivers)
       hold_drivers(false, momentum_update, n_owned_nodes);
     if (!boundary_conditions.empty())
@@ -515,7 +517,8 @@ namespace sable::mpm
                              n_owned_nodes,
                              grid.triangulation.get_communicator(),
                              grid.periodicity().any() ? nullptr : &grid.node_positions(),
-                             with_regression ? &fitted_normals : nullptr);
+                             with_regression ? &fitted_normals : nullptr,
+                             &grid.node_support_volumes());
     if (!boundary_conditions.empty())
       boundary_conditions.apply_to_initial_bodies(fields);
     keep_corrections(boundary_conditions);

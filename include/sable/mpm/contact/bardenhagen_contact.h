@@ -96,7 +96,8 @@ namespace sable::mpm
           const MPI_Comm                     communicator   = MPI_COMM_SELF,
           const std::vector<Point<dim>> *    node_positions = nullptr,
           const std::vector<Tensor<1, dim>> *fitted_normals = nullptr,
-          const Geometry                     geometry       = Geometry::compute);
+          const Geometry                     geometry       = Geometry::compute,
+          const std::vector<double> *        support_volumes = nullptr);
 
     /// The contact on the velocities at the start of a step (USAVG's first
     /// half): decided afresh, as in the momentum update, but nothing is
@@ -109,7 +110,8 @@ namespace sable::mpm
                      const unsigned int                 n_owned_nodes,
                      const MPI_Comm                     communicator,
                      const std::vector<Point<dim>> *    node_positions,
-                     const std::vector<Tensor<1, dim>> *fitted_normals);
+                     const std::vector<Tensor<1, dim>> *fitted_normals,
+                     const std::vector<double> *        support_volumes = nullptr);
 
     /// With 'Normals = fitted at edges': whether two bodies whose unit
     /// outward directions at a node are @p normal_a and @p normal_b meet
@@ -127,12 +129,19 @@ namespace sable::mpm
 
     /// Per body, the radius of curvature of its surface (infinite for a
     /// box or a mesh body) and its volume, for 'Normals = flatter body';
-    /// without them the normal is the larger mass's at each node.
+    /// without them the normal is the larger mass's at each node. With its
+    /// mass, the body's reference volume per unit mass, for the overlap
+    /// test of surface_gap().
     void
-    set_body_shapes(const std::vector<double> &surface_radii, const std::vector<double> &volumes)
+    set_body_shapes(const std::vector<double> &surface_radii,
+                    const std::vector<double> &volumes,
+                    const std::vector<double> &masses)
     {
       body_surface_radii = surface_radii;
       body_volumes       = volumes;
+      body_specific_volumes.resize(volumes.size());
+      for (unsigned int b = 0; b < volumes.size(); ++b)
+        body_specific_volumes[b] = masses[b] > 0 ? volumes[b] / masses[b] : 0.;
       // contact points need a round body and a flat one
       const auto round = [](const double r) { return std::isfinite(r); };
       round_and_flat_bodies = std::any_of(surface_radii.begin(), surface_radii.end(), round) &&
@@ -317,6 +326,8 @@ namespace sable::mpm
       std::vector<Tensor<1, dim>> normal, change, own, friction;
       std::vector<double>         tangential_speed, tangential_change;
       std::vector<bool>           slipping;
+      /// the volume of the node's support (zero: not known)
+      double support_volume = 0;
       /// pairwise contact: the change of the pair's first body and the
       /// pair's heat per unit scale
       struct PairChange
@@ -424,7 +435,8 @@ namespace sable::mpm
     surface_gap(const typename BodyFields<dim>::Record &a,
                 const typename BodyFields<dim>::Record &b,
                 const Tensor<1, dim> &                  normal,
-                const Tensor<1, dim> &                  spacing) const;
+                const Tensor<1, dim> &                  spacing,
+                const double                            support = 0) const;
 
     /// surface_gap(), or with @p geometry the gap it keeps (computed and
     /// kept there if not yet).
@@ -433,7 +445,18 @@ namespace sable::mpm
              const typename BodyFields<dim>::Record &b,
              const Tensor<1, dim> &                  normal,
              const Tensor<1, dim> &                  spacing,
+             const double                            support,
              PairGeometry *                          geometry) const;
+
+    /// Whether the reference volumes of @p a and @p b at their node exceed
+    /// the volume @p support of the node's support (Grid::
+    /// node_support_volumes(); zero: not known) by more than
+    /// overlap_tolerance, each filling at least overlap_least_share of
+    /// it: the bodies overlap there, whatever their centroids say.
+    bool
+    overlapping(const typename BodyFields<dim>::Record &a,
+                const typename BodyFields<dim>::Record &b,
+                const double                            support) const;
 
     /// Whether surfaces @p gap apart, closing at @p closing, meet within
     /// @p dt.
@@ -511,7 +534,9 @@ namespace sable::mpm
     {
       BodyFields<dim> &                  fields;
       const std::vector<Tensor<1, dim>> &spacing;
-      const double                       dt;
+      /// per node, the volume of its support (nullptr: not known)
+      const std::vector<double> *support_volumes;
+      const double               dt;
       const unsigned int                 n_owned_nodes;
       const bool                         record_forces;
     };
@@ -564,6 +589,8 @@ namespace sable::mpm
     }
     std::vector<unsigned int> body_groups;
     std::vector<double>       body_surface_radii, body_volumes, body_mass_factors;
+    /// per body, reference volume per unit mass (set_body_shapes())
+    std::vector<double> body_specific_volumes;
     /// set_face_directions(), and the same turned by
     /// turn_face_directions()
     std::vector<Tensor<1, dim>> reference_face_directions, face_directions;
@@ -580,6 +607,16 @@ namespace sable::mpm
     /// sideways offset of the centroids, in cells, that surfaces_meet()
     /// does not count
     static constexpr double sideways_tolerance = 0.25;
+    /// fraction by which two bodies' reference volumes at a node may exceed
+    /// its support before overlapping() says they overlap: above the
+    /// round-off of two lattices that fill a support exactly (faces along
+    /// grid lines; with no margin, one and two MPI ranks decided such
+    /// nodes differently), below the overfill of the settling pile's
+    /// disks pressed into each other (up to 48%)
+    static constexpr double overlap_tolerance = 0.01;
+    /// the least share of the node's support each of the two bodies must
+    /// fill for overlapping() to say they overlap
+    static constexpr double overlap_least_share = 0.05;
     /// with 'flatter body' or 'largest mass' normals: two bodies whose unit outward
     /// directions at a node have a larger dot product (less than 120
     /// degrees apart) do not face each other there (pair_normal())

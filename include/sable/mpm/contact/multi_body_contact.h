@@ -233,12 +233,14 @@ namespace sable::mpm
     }
 
     /// Per body, the radius of curvature of its surface (infinite for
-    /// bodies with faces) and its volume, for 'Normals = flatter body'
-    /// (BardenhagenContact::set_body_shapes()). With 'flatter body', nodes
+    /// bodies with faces), its volume and its mass, for 'Normals = flatter
+    /// body' and the overlap test (BardenhagenContact::set_body_shapes()). With 'flatter body', nodes
     /// where only round bodies meet take the fitted plane's normal
     /// (fit_separating_planes()).
     void
-    set_body_shapes(const std::vector<double> &surface_radii, const std::vector<double> &volumes);
+    set_body_shapes(const std::vector<double> &surface_radii,
+                    const std::vector<double> &volumes,
+                    const std::vector<double> &masses);
 
     /// The bodies of prescribed velocity (kept by the caller), whose
     /// records correct_velocities() sets to their velocity: the kernel
