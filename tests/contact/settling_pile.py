@@ -17,8 +17,8 @@ settles (at the end less than a tenth of the energy released is kinetic:
 measured 6.4%), and no point is lost. In frames every 0.05 s no point of a
 grain lies more than a third of a spacing (a sixth of a cell) inside the
 convex hull of another grain's points: measured 0.11 spacings at the
-deepest (0.09 before the overlap test of the contact's detection); 0.13
-to 0.24 in variants of the scene not tuned on (CFL 0.45, mu 0.2 or 0.5 or
+deepest (0.09 before the overlap test of the contact's detection); 0.02
+to 0.32 in variants of the scene not tuned on (CFL 0.45, mu 0.2 or 0.5 or
 frictionless between the disks; 0.20 to 0.30 before); 0.53 while two disks
 took the larger one's mass gradient as their normal, which tilts by tens
 of degrees from node to node at this resolution, so that the disks slid
