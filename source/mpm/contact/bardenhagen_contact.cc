@@ -518,9 +518,10 @@ namespace sable::mpm
           node_acts = approach > 0 || geometry->compressed;
         if (node_acts && begin[0].mass > 0 && begin[1].mass > 0 &&
             parameters.detection == ContactParameters::Detection::surface_position)
-          node_acts = surfaces_meet(pair_gap(begin[0], begin[1], normal[0], spacing, scratch.support_volume, geometry),
-                                    (begin[0].new_velocity - begin[1].new_velocity) * normal[0],
-                                    dt);
+          node_acts = surfaces_meet(
+            pair_gap(begin[0], begin[1], normal[0], spacing, scratch.support_volume, geometry),
+            (begin[0].new_velocity - begin[1].new_velocity) * normal[0],
+            dt);
       }
 
     double rate = 0;
@@ -879,10 +880,8 @@ namespace sable::mpm
       return false;
     // bodies that do not overlap fill at most the node's support: sum_p
     // N_p V_p over a body's points is the integral of N over the body
-    const double factor_a = body_mass_factors.empty() ? 1. : body_mass_factors[a.body];
-    const double factor_b = body_mass_factors.empty() ? 1. : body_mass_factors[b.body];
-    const double volume_a = a.mass / factor_a * body_specific_volumes[a.body];
-    const double volume_b = b.mass / factor_b * body_specific_volumes[b.body];
+    const double volume_a = unscaled_mass(a) * body_specific_volumes[a.body];
+    const double volume_b = unscaled_mass(b) * body_specific_volumes[b.body];
     // a body with a few points in a corner of the support: the plane fitted
     // there, or its mass gradient, may tilt far from the surfaces', and a
     // pair held along a tilted normal slides into itself under load (with
@@ -979,9 +978,10 @@ namespace sable::mpm
                 }
             }
           if (acts && parameters.detection == ContactParameters::Detection::surface_position)
-            acts = surfaces_meet(pair_gap(ra, rb, common, spacing, scratch.support_volume, pair_geometry),
-                                 (velocity[a] - velocity[b]) * common,
-                                 dt);
+            acts = surfaces_meet(
+              pair_gap(ra, rb, common, spacing, scratch.support_volume, pair_geometry),
+              (velocity[a] - velocity[b]) * common,
+              dt);
           if (!acts)
             {
               keep_pulling_impulse(ra.body, rb.body, measure && record_forces, owned, sums);

@@ -118,8 +118,7 @@ namespace sable::mpm
     PairSums               first;
     for_each_pair_node([&](const unsigned int node, const Record &round, const Record &flat) {
       // (a driven body's records carry its masses scaled, its surface not)
-      const double flat_mass =
-        flat.body < body_mass_factors.size() ? flat.mass / body_mass_factors[flat.body] : flat.mass;
+      const double flat_mass = unscaled_mass(flat);
       if (node >= n_owned_nodes || !on_one_face(flat) || flat.mass_on_surface < 0.9 * flat_mass ||
           round.mass_on_surface < 0.9 * round.mass)
         return;

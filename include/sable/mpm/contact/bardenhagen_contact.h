@@ -466,6 +466,14 @@ namespace sable::mpm
       return gap.separation - dt * std::max(closing, 0.) <= gap.touching;
     }
 
+    /// The mass of record @p r as its body has it: a driven body's records
+    /// carry their masses scaled (set_body_mass_factors()).
+    double
+    unscaled_mass(const typename BodyFields<dim>::Record &r) const
+    {
+      return r.body < body_mass_factors.size() ? r.mass / body_mass_factors[r.body] : r.mass;
+    }
+
     /// Whether one of the records is a disk's or sphere's and the other a
     /// box's or mesh body's.
     bool
@@ -535,8 +543,8 @@ namespace sable::mpm
       BodyFields<dim> &                  fields;
       const std::vector<Tensor<1, dim>> &spacing;
       /// per node, the volume of its support (nullptr: not known)
-      const std::vector<double> *support_volumes;
-      const double               dt;
+      const std::vector<double> *        support_volumes;
+      const double                       dt;
       const unsigned int                 n_owned_nodes;
       const bool                         record_forces;
     };

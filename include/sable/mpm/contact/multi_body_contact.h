@@ -234,9 +234,9 @@ namespace sable::mpm
 
     /// Per body, the radius of curvature of its surface (infinite for
     /// bodies with faces), its volume and its mass, for 'Normals = flatter
-    /// body' and the overlap test (BardenhagenContact::set_body_shapes()). With 'flatter body', nodes
-    /// where only round bodies meet take the fitted plane's normal
-    /// (fit_separating_planes()).
+    /// body' and the overlap test (BardenhagenContact::set_body_shapes()).
+    /// With 'flatter body', nodes where only round bodies meet take the
+    /// fitted plane's normal (fit_separating_planes()).
     void
     set_body_shapes(const std::vector<double> &surface_radii,
                     const std::vector<double> &volumes,
