@@ -1159,7 +1159,7 @@ namespace sable::mpm
       surface_radii[b] = parameters.bodies[b].shape == BodyParameters<dim>::Shape::disk ?
                            parameters.bodies[b].radius :
                            std::numeric_limits<double>::infinity();
-    contact->set_body_shapes(surface_radii, volumes, masses);
+    contact->set_body_shapes(surface_radii, volumes, masses, grid.periodicity().any());
   }
 
   template <int dim>

@@ -31,9 +31,10 @@
    every shared node), momentum kept to round-off, kinetic + strain energy
    never more than 0.5% above the initial (measured +0.0% in all six),
    restitution (the relative velocity along the line of centres at the
-   first contact, rebound over impact) at most 1 (measured 0.94, 0.72,
-   0.88; 3D 0.93, 0.69, 0.84; the disks meet on the plane fitted between
-   their points).
+   first contact, rebound over impact) at most 1 (measured 0.94, 0.77,
+   0.88; 3D 0.93, 0.67, 0.84; the disks meet along their line of
+   centres; on the plane fitted between their points 0.94, 0.76, 0.87 and
+   0.93, 0.67, 0.84).
 3. A disk (R = 0.2 m) on a plane body at 16 cells per diameter, 2x2 points
    per cell seeded conforming (rings parallel to its surface), to 0.5 s:
    the centre's travel within 3% of the rigid disk's, rolling at theta =

@@ -56,6 +56,14 @@
 //    velocities meet, to 1e-12), and stay free with the support filled to
 //    90%, with no support volume given, or with one of them filling only
 //    3% of the support (a corner, where the normal is unsure).
+// 7. Two round bodies (the kernel): disks of radius 0.2 m whose centres lie
+//    on a line 30 degrees from the x axis, meeting at a node where their
+//    mass gradients point along x (a tilted normal, as a coarse contact's
+//    staircase gives), approaching along x, frictionless. With their
+//    centres given the contact acts along the line of centres: each
+//    velocity change is parallel to it and the approach along it stops
+//    (to 1e-12); without them, along the mass gradients (x), which shows
+//    the check tells the two apart.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -458,6 +466,55 @@ namespace
           overlap_kernel(1.1, true, 0.03) == 0.);
   }
 
+  /// Two disks at one node (7. above), approaching along x at 0.1 m/s,
+  /// their centres on a line 30 degrees from x; with @p centres_known
+  /// their centres are given. Returns the first disk's velocity change.
+  Tensor<1, 2>
+  round_pair_kernel(const bool centres_known)
+  {
+    ContactParameters parameters;
+    parameters.model = Model::bardenhagen_2001;
+    BardenhagenContact<2> contact(parameters, {0, 1});
+    const double radius = 0.2, angle = M_PI / 6;
+    contact.set_body_shapes({radius, radius}, {M_PI * radius * radius, M_PI * radius * radius},
+                            {1000. * M_PI * radius * radius, 1000. * M_PI * radius * radius});
+    const Point<2> line(std::cos(angle), std::sin(angle));
+    if (centres_known)
+      contact.set_body_centres({Point<2>(), Point<2>(2 * radius * line)});
+    BodyFields<2> fields;
+    fields.clear(1);
+    fields.add(0, 0);
+    fields.add(0, 1);
+    fields.allocate();
+    const double dx = 0.05, dt = 1e-4, closing = 0.1;
+    auto &       left = fields.record(0, 0), &right = fields.record(0, 1);
+    left.mass = right.mass = 1.;
+    left.mass_gradient     = Tensor<1, 2>({1., 0.});
+    right.mass_gradient    = Tensor<1, 2>({-1., 0.});
+    // both centroids at the node: the surfaces touch there
+    left.mass_spacing = right.mass_spacing = 0.5 * dx;
+    left.new_velocity                      = Tensor<1, 2>({closing / 2, 0.});
+    right.new_velocity                     = Tensor<1, 2>({-closing / 2, 0.});
+    contact.apply(fields, {Tensor<1, 2>({dx, dx})}, dt, 1, true);
+    return left.new_velocity - Tensor<1, 2>({closing / 2, 0.});
+  }
+
+  void
+  round_pair_normal()
+  {
+    const Tensor<1, 2> line({std::cos(M_PI / 6), std::sin(M_PI / 6)});
+    // equal masses: each loses half the approach along the line of centres
+    const Tensor<1, 2> expected = -0.5 * (0.1 * line[0]) * line;
+    const Tensor<1, 2> change   = round_pair_kernel(true);
+    check("round pair: with their centres given, the change is along the line of centres (" +
+            std::to_string(change[0]) + ", " + std::to_string(change[1]) + ")",
+          (change - expected).norm() < 1e-12);
+    const Tensor<1, 2> along_x = round_pair_kernel(false);
+    check("round pair: without them, along the mass gradients (x): (" +
+            std::to_string(along_x[0]) + ", " + std::to_string(along_x[1]) + ")",
+          std::abs(along_x[0] + 0.05) < 1e-12 && along_x[1] == 0.);
+  }
+
   /// Random contact nodes (see 5. above) in @p fields.
   template <int dim>
   void
@@ -631,6 +688,7 @@ main(int argc, char **argv)
   release_logic();
   impulse_scaling();
   overlap_detection();
+  round_pair_normal();
   resting_grain(BodyParameters<2>::Seeding::lattice);
   resting_grain(BodyParameters<2>::Seeding::conforming);
   for (const Model model : {Model::bardenhagen_2001, Model::bardenhagen_2000})

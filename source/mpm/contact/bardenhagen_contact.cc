@@ -642,6 +642,19 @@ namespace sable::mpm
                                        const Tensor<1, dim> &                  normal_a,
                                        const Tensor<1, dim> &                  normal_b) const
   {
+    // two round bodies: the line between their centres, the normal of
+    // rigid disks or spheres in contact, the same at every node of the
+    // pair (the plane fitted between their points near a node tilts with
+    // the points' registration, and disks pressed together slid along it
+    // into each other)
+    if (!body_centres.empty() && std::isfinite(body_surface_radii[a.body]) &&
+        std::isfinite(body_surface_radii[b.body]))
+      {
+        const Tensor<1, dim> line = body_centres[b.body] - body_centres[a.body];
+        const double         norm = line.norm();
+        if (norm > 0)
+          return line / norm;
+      }
     Tensor<1, dim> common;
     // the fitted planes' normals where both bodies have one (for two
     // bodies they are opposite; at nodes of more, each body's plane

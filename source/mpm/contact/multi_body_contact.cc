@@ -189,6 +189,8 @@ namespace sable::mpm
     wall_nodes = &boundary_conditions.constrained_nodes();
     if (layout.surface_normal_stored)
       update_body_rotations(cells, grid.triangulation.get_communicator());
+    if (centre_lines)
+      update_body_centres(cells, grid.triangulation.get_communicator());
     fields.clear(grid.n_relevant_nodes());
     const bool gimp = grid.get_shape_functions() == ShapeFunctions::gimp;
     // with linear shape functions, the bodies of each cell's points, kept
@@ -283,20 +285,55 @@ namespace sable::mpm
   void
   MultiBodyContact<dim>::set_body_shapes(const std::vector<double> &surface_radii,
                                          const std::vector<double> &volumes,
-                                         const std::vector<double> &masses)
+                                         const std::vector<double> &masses,
+                                         const bool                 periodic_grid)
   {
     model.set_body_shapes(surface_radii, volumes, masses);
     // two round bodies' mass gradients at a coarse contact tilt by tens of
     // degrees from node to node, and a tilted normal lets the bodies slide
     // into each other under load: the settling pile's disks overlapped by
     // a quarter cell (doc/validation.md, "Energy balance of a settling
-    // pile"); the plane fitted between their points does not tilt so
+    // pile"); their line of centres does not tilt, nor, less well, the
+    // plane fitted between their points
     round_body.resize(surface_radii.size());
     for (unsigned int b = 0; b < surface_radii.size(); ++b)
       round_body[b] = std::isfinite(surface_radii[b]);
-    fit_round_pairs = parameters.normals == ContactParameters::Normals::flatter_body &&
-                      std::count(round_body.begin(), round_body.end(), true) >= 2;
+    const bool round_pairs = parameters.normals == ContactParameters::Normals::flatter_body &&
+                             std::count(round_body.begin(), round_body.end(), true) >= 2;
+    centre_lines    = round_pairs && !periodic_grid;
+    fit_round_pairs = round_pairs && periodic_grid;
     with_regression = with_regression || fit_round_pairs;
+  }
+
+  template <int dim>
+  void
+  MultiBodyContact<dim>::update_body_centres(const ParticleCells<dim> &cells,
+                                             const MPI_Comm            communicator)
+  {
+    // per round body: sum m x and sum m over its points on all ranks
+    const unsigned int  n_entries = dim + 1;
+    std::vector<double> sums(n_bodies * n_entries, 0.);
+    for (unsigned int c = 0; c < cells.n_owned(); ++c)
+      for (const auto &particle : cells[c].particles)
+        {
+          const auto         props = particle.get_properties();
+          const unsigned int body  = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
+          if (!round_body[body])
+            continue;
+          const double       mass     = props[ParticleLayout<dim>::mass];
+          const Point<dim>   position = particle.get_location();
+          double *const      sum      = &sums[body * n_entries];
+          for (unsigned int d = 0; d < dim; ++d)
+            sum[d] += mass * position[d];
+          sum[dim] += mass;
+        }
+    Utilities::MPI::sum(sums, communicator, sums);
+    std::vector<Point<dim>> centres(n_bodies);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      if (sums[b * n_entries + dim] > 0)
+        for (unsigned int d = 0; d < dim; ++d)
+          centres[b][d] = sums[b * n_entries + d] / sums[b * n_entries + dim];
+    model.set_body_centres(centres);
   }
 
   template <int dim>

@@ -127,6 +127,17 @@ namespace sable::mpm
       return normal_a * normal_b > -0.9;
     }
 
+    /// Per body, the centre of its mass this step; where two round bodies
+    /// (finite surface radius, set_body_shapes()) meet, their contact
+    /// normal is then the line between their centres, as for rigid disks
+    /// and spheres. An empty list (the default) leaves their normal to
+    /// 'Contact/Normals'.
+    void
+    set_body_centres(const std::vector<Point<dim>> &centres)
+    {
+      body_centres = centres;
+    }
+
     /// Per body, the radius of curvature of its surface (infinite for a
     /// box or a mesh body) and its volume, for 'Normals = flatter body';
     /// without them the normal is the larger mass's at each node. With its
@@ -599,6 +610,9 @@ namespace sable::mpm
     std::vector<double>       body_surface_radii, body_volumes, body_mass_factors;
     /// per body, reference volume per unit mass (set_body_shapes())
     std::vector<double> body_specific_volumes;
+    /// per body, the centre of its mass (set_body_centres(); empty unless
+    /// round pairs take the line of centres as their normal)
+    std::vector<Point<dim>> body_centres;
     /// set_face_directions(), and the same turned by
     /// turn_face_directions()
     std::vector<Tensor<1, dim>> reference_face_directions, face_directions;

@@ -42,6 +42,7 @@ namespace sable::mpm
       /// the whole interface (a box's or a mesh body's before a disk's, the
       /// larger disk's before the smaller one's; between equally flat
       /// ones the larger body's by volume, then the one listed first);
+      /// two round bodies meet along the line between their centres;
       /// where their directions are less than 120 degrees apart the
       /// average, as with 'largest mass'
       flatter_body,

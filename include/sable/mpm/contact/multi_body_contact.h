@@ -235,12 +235,15 @@ namespace sable::mpm
     /// Per body, the radius of curvature of its surface (infinite for
     /// bodies with faces), its volume and its mass, for 'Normals = flatter
     /// body' and the overlap test (BardenhagenContact::set_body_shapes()).
-    /// With 'flatter body', nodes where only round bodies meet take the
-    /// fitted plane's normal (fit_separating_planes()).
+    /// With 'flatter body', two round bodies meet along the line between
+    /// their centres (update_body_centres()); on a @p periodic_grid, where
+    /// a body's centre may lie across a seam, at the nodes where only
+    /// round bodies meet along the fitted plane (fit_separating_planes()).
     void
     set_body_shapes(const std::vector<double> &surface_radii,
                     const std::vector<double> &volumes,
-                    const std::vector<double> &masses);
+                    const std::vector<double> &masses,
+                    const bool                 periodic_grid = false);
 
     /// The bodies of prescribed velocity (kept by the caller), whose
     /// records correct_velocities() sets to their velocity: the kernel
@@ -373,6 +376,11 @@ namespace sable::mpm
     void
     update_body_rotations(const ParticleCells<dim> &cells, const MPI_Comm communicator);
 
+    /// The centre of mass of each round body, over its points on all
+    /// ranks, to the kernel (BardenhagenContact::set_body_centres()).
+    void
+    update_body_centres(const ParticleCells<dim> &cells, const MPI_Comm communicator);
+
     bool heat_at_remap = false;
 
     const PrescribedVelocities<dim> *prescribed  = nullptr;
@@ -384,8 +392,10 @@ namespace sable::mpm
     const bool              with_traction;
     const bool              with_position;
     bool                    with_regression;
-    /// 'flatter body' in a scene of two or more round bodies: the planes
-    /// are fitted at the nodes where only round bodies meet
+    /// 'flatter body' in a scene of two or more round bodies: they meet
+    /// along their line of centres, or on a periodic grid the planes are
+    /// fitted at the nodes where only round bodies meet
+    bool                    centre_lines    = false;
     bool                    fit_round_pairs = false;
     std::vector<bool>       round_body;
     BodyFields<dim>         fields;
