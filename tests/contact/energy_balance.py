@@ -55,16 +55,15 @@ half of it (measured 391 J of 547 J), so that it is not lost either.
 Counted from the nodal velocities the correction leaves, the heat of the
 same pile exceeded the gravitational energy released and the guard
 stopped the run at 0.82 s with +67%. With the impacts' loss counted the
-balance never gains more than 8% (measured +2.5% under the default
+balance never gains more than 8% (measured +2.4% under the default
 scheme, USAVG in a scene with contact between bodies; under MUSL +5.6% at
 CFL 0.5, +1.6% at CFL 0.25: the gain of MUSL's step where grains touch,
 which falls with the square of the step; before the loss was counted the
 balance showed -26%). No point is lost, and no point of a grain comes
 more than a tenth of a spacing inside the convex hull of another grain's
-points (no interpenetration; measured: 0.23 spacings of clearance at the
-least with two disks meeting along their line of centres, 0.22 on the
-plane fitted between their points, 0.10 while they took the larger one's
-mass gradient as their contact normal). With the papers' detection, contact at every node two disks
+points (no interpenetration; measured: 0.22 spacings of clearance at the
+least, 0.10 while two disks took the larger one's mass gradient as their
+contact normal). With the papers' detection, contact at every node two disks
 share ('Contact/Detection = shared nodes'), the same pile gains +38% by
 0.6 s (MUSL: +54% at 0.31 s); with 'Output/Energy drift limit = 0.2'
 the guard stops it, and the stop names the detection and 'surface
@@ -188,10 +187,9 @@ if rows:
     # no interpenetration: a grain's points fill it to within a fraction of
     # a spacing of its surface, so a point of another grain inside the
     # convex hull of its points lies inside it. Measured in these frames
-    # (every 0.1 s): the least clearance 0.23 spacings (0.22 on the
-    # fitted plane, 0.10 while two disks took the larger one's mass
-    # gradient as their contact normal, when in frames every 0.005 s one
-    # point came 0.01 spacings inside).
+    # (every 0.1 s): the least clearance 0.22 spacings (0.10 while two
+    # disks took the larger one's mass gradient as their contact normal,
+    # when in frames every 0.005 s one point came 0.01 spacings inside).
     # (The closest distance of two grains' points, which the check read
     # before, swings with the points' FLIP noise, relative velocities of
     # 1-2 m/s between touching points: 0.07 to 0.5 spacings from frame to

@@ -293,15 +293,17 @@ namespace sable::mpm
     // degrees from node to node, and a tilted normal lets the bodies slide
     // into each other under load: the settling pile's disks overlapped by
     // a quarter cell (doc/validation.md, "Energy balance of a settling
-    // pile"); their line of centres does not tilt, nor, less well, the
-    // plane fitted between their points
+    // pile"); neither the plane fitted between their points nor their
+    // line of centres tilts so ('Contact/Round pair normals')
     round_body.resize(surface_radii.size());
     for (unsigned int b = 0; b < surface_radii.size(); ++b)
       round_body[b] = std::isfinite(surface_radii[b]);
     const bool round_pairs = parameters.normals == ContactParameters::Normals::flatter_body &&
                              std::count(round_body.begin(), round_body.end(), true) >= 2;
-    centre_lines    = round_pairs && !periodic_grid;
-    fit_round_pairs = round_pairs && periodic_grid;
+    centre_lines    = round_pairs && !periodic_grid &&
+                   parameters.round_pair_normals ==
+                     ContactParameters::RoundPairNormals::line_of_centres;
+    fit_round_pairs = round_pairs && !centre_lines;
     with_regression = with_regression || fit_round_pairs;
   }
 

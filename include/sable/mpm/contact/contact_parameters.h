@@ -42,7 +42,6 @@ namespace sable::mpm
       /// the whole interface (a box's or a mesh body's before a disk's, the
       /// larger disk's before the smaller one's; between equally flat
       /// ones the larger body's by volume, then the one listed first);
-      /// two round bodies meet along the line between their centres;
       /// where their directions are less than 120 degrees apart the
       /// average, as with 'largest mass'
       flatter_body,
@@ -58,6 +57,18 @@ namespace sable::mpm
       fitted_at_edges
     };
     Normals normals = Normals::flatter_body;
+    /// With 'flatter body', the normal where only round bodies (disks,
+    /// spheres) meet at a node.
+    enum class RoundPairNormals
+    {
+      /// the plane fitted between their points, as 'logistic regression'
+      fitted_plane,
+      /// the line between their centres of mass, the normal of rigid
+      /// disks in contact (not on periodic grids, where a centre may lie
+      /// across a seam: there the fitted plane)
+      line_of_centres
+    };
+    RoundPairNormals round_pair_normals = RoundPairNormals::fitted_plane;
     /// Which two-body nodes may act: every node the bodies share (the
     /// papers), or only where the bodies' surfaces have met, judged from
     /// the distance between their mass centroids at the node along the

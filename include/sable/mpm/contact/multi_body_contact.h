@@ -235,10 +235,11 @@ namespace sable::mpm
     /// Per body, the radius of curvature of its surface (infinite for
     /// bodies with faces), its volume and its mass, for 'Normals = flatter
     /// body' and the overlap test (BardenhagenContact::set_body_shapes()).
-    /// With 'flatter body', two round bodies meet along the line between
-    /// their centres (update_body_centres()); on a @p periodic_grid, where
-    /// a body's centre may lie across a seam, at the nodes where only
-    /// round bodies meet along the fitted plane (fit_separating_planes()).
+    /// With 'flatter body', nodes where only round bodies meet take the
+    /// fitted plane's normal (fit_separating_planes()), or with 'Round
+    /// pair normals = line of centres' the line between the bodies'
+    /// centres (update_body_centres()), except on a @p periodic_grid,
+    /// where a body's centre may lie across a seam.
     void
     set_body_shapes(const std::vector<double> &surface_radii,
                     const std::vector<double> &volumes,
@@ -393,8 +394,8 @@ namespace sable::mpm
     const bool              with_position;
     bool                    with_regression;
     /// 'flatter body' in a scene of two or more round bodies: they meet
-    /// along their line of centres, or on a periodic grid the planes are
-    /// fitted at the nodes where only round bodies meet
+    /// along their line of centres ('Round pair normals'), or the planes
+    /// are fitted at the nodes where only round bodies meet
     bool                    centre_lines    = false;
     bool                    fit_round_pairs = false;
     std::vector<bool>       round_body;
