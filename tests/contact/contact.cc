@@ -398,6 +398,16 @@ namespace
       }
   }
 
+  /// One contact node with a record of bodies 0 and 1.
+  void
+  one_node_of_two_bodies(BodyFields<2> &fields)
+  {
+    fields.clear(1);
+    fields.add(0, 0);
+    fields.add(0, 1);
+    fields.allocate();
+  }
+
   /// The overlap test of the surface check (6. above): two bodies at one
   /// node whose centroids say their surfaces are a cell apart, approaching
   /// at 0.1 m/s, with reference volumes that fill @p filled of the node's
@@ -414,10 +424,7 @@ namespace
     const double infinite = std::numeric_limits<double>::infinity();
     contact.set_body_shapes({infinite, infinite}, {1., 1.}, {1000., 1000.});
     BodyFields<2> fields;
-    fields.clear(1);
-    fields.add(0, 0);
-    fields.add(0, 1);
-    fields.allocate();
+    one_node_of_two_bodies(fields);
     const double dx = 0.1, dt = 1e-4, closing = 0.1;
     auto &       left = fields.record(0, 0), &right = fields.record(0, 1);
     right.mass = 1000. * right_share * dx * dx;
@@ -482,10 +489,7 @@ namespace
     if (centres_known)
       contact.set_body_centres({Point<2>(), Point<2>(2 * radius * line)});
     BodyFields<2> fields;
-    fields.clear(1);
-    fields.add(0, 0);
-    fields.add(0, 1);
-    fields.allocate();
+    one_node_of_two_bodies(fields);
     const double dx = 0.05, dt = 1e-4, closing = 0.1;
     auto &       left = fields.record(0, 0), &right = fields.record(0, 1);
     left.mass = right.mass = 1.;

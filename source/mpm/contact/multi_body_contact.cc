@@ -42,6 +42,29 @@ namespace sable::mpm
         }
       return R;
     }
+    /// Per body, @p n_entries sums over its points in the owned cells on
+    /// all ranks: @p add(properties, location, sums) adds a point's
+    /// shares; the points of bodies not @p wanted are skipped.
+    template <int dim, typename AddPoint>
+    std::vector<double>
+    sum_per_body(const ParticleCells<dim> &cells,
+                 const std::vector<bool> & wanted,
+                 const unsigned int        n_entries,
+                 const MPI_Comm            communicator,
+                 const AddPoint &          add)
+    {
+      std::vector<double> sums(wanted.size() * n_entries, 0.);
+      for (unsigned int c = 0; c < cells.n_owned(); ++c)
+        for (const auto &particle : cells[c].particles)
+          {
+            const auto         props = particle.get_properties();
+            const unsigned int body  = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
+            if (wanted[body])
+              add(props, particle.get_location(), &sums[body * n_entries]);
+          }
+      Utilities::MPI::sum(sums, communicator, sums);
+      return sums;
+    }
   } // namespace
 
   template <int dim>
@@ -86,22 +109,14 @@ namespace sable::mpm
     if (!any_body_with_normals)
       return;
     // per body: sum V0 F and sum V0 over its points on all ranks
-    const unsigned int  n_entries = dim * dim + 1;
-    std::vector<double> sums(n_bodies * n_entries, 0.);
-    for (unsigned int c = 0; c < cells.n_owned(); ++c)
-      for (const auto &particle : cells[c].particles)
-        {
-          const auto         props  = particle.get_properties();
-          const unsigned int body   = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
-          if (!bodies_with_normals[body])
-            continue;
-          const double       volume = props[ParticleLayout<dim>::initial_volume];
-          double *const      sum    = &sums[body * n_entries];
-          for (unsigned int k = 0; k < dim * dim; ++k)
-            sum[k] += volume * props[ParticleLayout<dim>::deformation + k];
-          sum[dim * dim] += volume;
-        }
-    Utilities::MPI::sum(sums, communicator, sums);
+    const unsigned int        n_entries = dim * dim + 1;
+    const std::vector<double> sums      = sum_per_body<dim>(
+      cells, bodies_with_normals, n_entries, communicator, [](const auto &props, const auto &, double *sum) {
+        const double volume = props[ParticleLayout<dim>::initial_volume];
+        for (unsigned int k = 0; k < dim * dim; ++k)
+          sum[k] += volume * props[ParticleLayout<dim>::deformation + k];
+        sum[dim * dim] += volume;
+      });
     for (unsigned int b = 0; b < n_bodies; ++b)
       if (bodies_with_normals[b])
       {
@@ -313,23 +328,14 @@ namespace sable::mpm
                                              const MPI_Comm            communicator)
   {
     // per round body: sum m x and sum m over its points on all ranks
-    const unsigned int  n_entries = dim + 1;
-    std::vector<double> sums(n_bodies * n_entries, 0.);
-    for (unsigned int c = 0; c < cells.n_owned(); ++c)
-      for (const auto &particle : cells[c].particles)
-        {
-          const auto         props = particle.get_properties();
-          const unsigned int body  = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
-          if (!round_body[body])
-            continue;
-          const double       mass     = props[ParticleLayout<dim>::mass];
-          const Point<dim>   position = particle.get_location();
-          double *const      sum      = &sums[body * n_entries];
-          for (unsigned int d = 0; d < dim; ++d)
-            sum[d] += mass * position[d];
-          sum[dim] += mass;
-        }
-    Utilities::MPI::sum(sums, communicator, sums);
+    const unsigned int        n_entries = dim + 1;
+    const std::vector<double> sums      = sum_per_body<dim>(
+      cells, round_body, n_entries, communicator, [](const auto &props, const auto &x, double *sum) {
+        const double mass = props[ParticleLayout<dim>::mass];
+        for (unsigned int d = 0; d < dim; ++d)
+          sum[d] += mass * x[d];
+        sum[dim] += mass;
+      });
     std::vector<Point<dim>> centres(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
       if (sums[b * n_entries + dim] > 0)
