@@ -642,11 +642,11 @@ namespace sable::mpm
                                        const Tensor<1, dim> &                  normal_a,
                                        const Tensor<1, dim> &                  normal_b) const
   {
-    // two round bodies: the line between their centres, the normal of
-    // rigid disks or spheres in contact, the same at every node of the
-    // pair (the plane fitted between their points near a node tilts with
-    // the points' registration, and disks pressed together slid along it
-    // into each other)
+    // two round bodies with 'Round pair normals = line of centres': the
+    // line between their centres, the normal of rigid disks or spheres in
+    // contact, the same at every node of the pair (their mass gradients
+    // tilt from node to node at a coarse contact; the fitted planes less
+    // so, at the cost of a fit per node)
     if (!body_centres.empty() && std::isfinite(body_surface_radii[a.body]) &&
         std::isfinite(body_surface_radii[b.body]))
       {

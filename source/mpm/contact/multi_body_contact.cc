@@ -42,6 +42,7 @@ namespace sable::mpm
         }
       return R;
     }
+
     /// Per body, @p n_entries sums over its points in the owned cells on
     /// all ranks: @p add(properties, location, sums) adds a point's
     /// shares; the points of bodies not @p wanted are skipped.
@@ -110,13 +111,14 @@ namespace sable::mpm
       return;
     // per body: sum V0 F and sum V0 over its points on all ranks
     const unsigned int        n_entries = dim * dim + 1;
-    const std::vector<double> sums      = sum_per_body<dim>(
-      cells, bodies_with_normals, n_entries, communicator, [](const auto &props, const auto &, double *sum) {
-        const double volume = props[ParticleLayout<dim>::initial_volume];
-        for (unsigned int k = 0; k < dim * dim; ++k)
-          sum[k] += volume * props[ParticleLayout<dim>::deformation + k];
-        sum[dim * dim] += volume;
-      });
+    const auto add_point = [](const auto &props, const auto &, double *sum) {
+      const double volume = props[ParticleLayout<dim>::initial_volume];
+      for (unsigned int k = 0; k < dim * dim; ++k)
+        sum[k] += volume * props[ParticleLayout<dim>::deformation + k];
+      sum[dim * dim] += volume;
+    };
+    const std::vector<double> sums =
+      sum_per_body<dim>(cells, bodies_with_normals, n_entries, communicator, add_point);
     for (unsigned int b = 0; b < n_bodies; ++b)
       if (bodies_with_normals[b])
       {
@@ -329,13 +331,14 @@ namespace sable::mpm
   {
     // per round body: sum m x and sum m over its points on all ranks
     const unsigned int        n_entries = dim + 1;
-    const std::vector<double> sums      = sum_per_body<dim>(
-      cells, round_body, n_entries, communicator, [](const auto &props, const auto &x, double *sum) {
-        const double mass = props[ParticleLayout<dim>::mass];
-        for (unsigned int d = 0; d < dim; ++d)
-          sum[d] += mass * x[d];
-        sum[dim] += mass;
-      });
+    const auto add_point = [](const auto &props, const auto &x, double *sum) {
+      const double mass = props[ParticleLayout<dim>::mass];
+      for (unsigned int d = 0; d < dim; ++d)
+        sum[d] += mass * x[d];
+      sum[dim] += mass;
+    };
+    const std::vector<double> sums =
+      sum_per_body<dim>(cells, round_body, n_entries, communicator, add_point);
     std::vector<Point<dim>> centres(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
       if (sums[b * n_entries + dim] > 0)
