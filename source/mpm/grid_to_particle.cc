@@ -142,6 +142,16 @@ namespace sable::mpm
                     L[d][e] += v_new[d] * shape.gradients[v][e];
               }
           }
+        if constexpr (update_positions)
+          if (input.moments != nullptr && !driven)
+            {
+              const Tensor<1, dim> spin =
+                input.moments->velocity(body, particle.get_location());
+              velocity_change += spin;
+              grid_velocity += spin;
+              if constexpr (measure)
+                correction += spin;
+            }
         // with the affine transfers L becomes C, and a node of
         // weight 0 without mass next to a point on its cell's face
         // would carry its velocity 0 into the next transfer with
@@ -288,7 +298,10 @@ namespace sable::mpm
       cell_correction_loss.assign(cells.n_owned(), 0.);
     Assert(!measuring || corrected_cells.size() == cells.n_owned(),
            ExcMessage("find_corrected_cells() must run after the cells change"));
+    const RoundBodyMoments<dim> *const moments =
+      update_positions && contact != nullptr ? contact->kept_moments() : nullptr;
     const PassInput input{contact,
+                          moments,
                           drivers,
                           periodicity,
                           new_velocity.data(),
@@ -310,7 +323,9 @@ namespace sable::mpm
             if (cell_time_steps != nullptr && (*cell_time_steps)[c] == 0.)
               continue;
             const auto &cell         = cells[c];
-            const bool  measure_cell = measuring && corrected_cells[c] != 0;
+            // a body's rotation reaches all its points
+            const bool measure_cell =
+              measuring && (corrected_cells[c] != 0 || moments != nullptr);
             const double strain_time_step =
               cell_time_steps != nullptr ? (*cell_time_steps)[c] : time_step;
             const double cell_loss =

@@ -200,6 +200,9 @@ namespace sable::mpm
     struct PassInput
     {
       const MultiBodyContact<dim> *    contact;
+      /// the round bodies' rotations that carry the moments the transfer
+      /// loses (update_positions only; nullptr if none)
+      const RoundBodyMoments<dim> *    moments;
       const PrescribedVelocities<dim> *drivers;
       const Periodicity<dim> *         periodicity;
       const double *                   new_velocity;

@@ -2,6 +2,7 @@
 #include <deal.II/base/parallel.h>
 
 #include <sable/mpm/contact/multi_body_contact.h>
+#include <sable/mpm/contact/per_body_sums.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,30 +42,6 @@ namespace sable::mpm
             }
         }
       return R;
-    }
-
-    /// Per body, @p n_entries sums over its points in the owned cells on
-    /// all ranks: @p add(properties, location, sums) adds a point's
-    /// shares; the points of bodies not @p wanted are skipped.
-    template <int dim, typename AddPoint>
-    std::vector<double>
-    sum_per_body(const ParticleCells<dim> &cells,
-                 const std::vector<bool> & wanted,
-                 const unsigned int        n_entries,
-                 const MPI_Comm            communicator,
-                 const AddPoint &          add)
-    {
-      std::vector<double> sums(wanted.size() * n_entries, 0.);
-      for (unsigned int c = 0; c < cells.n_owned(); ++c)
-        for (const auto &particle : cells[c].particles)
-          {
-            const auto         props = particle.get_properties();
-            const unsigned int body  = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
-            if (wanted[body])
-              add(props, particle.get_location(), &sums[body * n_entries]);
-          }
-      Utilities::MPI::sum(sums, communicator, sums);
-      return sums;
     }
   } // namespace
 
@@ -208,6 +185,8 @@ namespace sable::mpm
       update_body_rotations(cells, grid.triangulation.get_communicator());
     if (centre_lines)
       update_body_centres(cells, grid.triangulation.get_communicator());
+    if (keep_moments)
+      moments.update_bodies(cells, round_body, grid.triangulation.get_communicator());
     fields.clear(grid.n_relevant_nodes());
     const bool gimp = grid.get_shape_functions() == ShapeFunctions::gimp;
     // with linear shape functions, the bodies of each cell's points, kept
@@ -321,6 +300,9 @@ namespace sable::mpm
                    parameters.round_pair_normals ==
                      ContactParameters::RoundPairNormals::line_of_centres;
     fit_round_pairs = round_pairs && !centre_lines;
+    keep_moments    = parameters.round_body_moments ==
+                     ContactParameters::RoundBodyMoments::kept &&
+                   !periodic_grid && std::count(round_body.begin(), round_body.end(), true) > 0;
     with_regression = with_regression || fit_round_pairs;
   }
 
@@ -505,6 +487,11 @@ namespace sable::mpm
     if (!boundary_conditions.empty())
       boundary_conditions.apply_to_bodies(fields, !momentum_update, n_owned_nodes);
     keep_corrections(boundary_conditions);
+    // the points take the momentum update's corrections (MUSL's remap
+    // pass corrects only the velocities of the strain update)
+    if (momentum_update && keep_moments)
+      moments.collect(
+        fields, grid.node_positions(), n_owned_nodes, grid.triangulation.get_communicator());
   }
 
   template <int dim>

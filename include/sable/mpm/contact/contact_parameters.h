@@ -69,6 +69,19 @@ namespace sable::mpm
       line_of_centres
     };
     RoundPairNormals round_pair_normals = RoundPairNormals::fitted_plane;
+    /// What a round body (disk, sphere) receives of the moment that the
+    /// contact's and the walls' corrections exert about its centre.
+    enum class RoundBodyMoments
+    {
+      /// what the transfer to its points delivers: each node's correction
+      /// taken about the points' centroid near the node
+      transferred,
+      /// the moment taken at the nodes: what the transfer loses is given
+      /// to the body as a rigid rotation (RoundBodyMoments; not on
+      /// periodic grids)
+      kept
+    };
+    RoundBodyMoments round_body_moments = RoundBodyMoments::transferred;
     /// Which two-body nodes may act: every node the bodies share (the
     /// papers), or only where the bodies' surfaces have met, judged from
     /// the distance between their mass centroids at the node along the

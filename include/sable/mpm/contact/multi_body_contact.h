@@ -9,6 +9,7 @@
 #include <sable/mpm/cell_colouring.h>
 #include <sable/mpm/contact/bardenhagen_contact.h>
 #include <sable/mpm/contact/body_fields.h>
+#include <sable/mpm/contact/round_body_moments.h>
 #include <sable/mpm/contact/separating_plane.h>
 #include <sable/mpm/grid.h>
 #include <sable/mpm/grid_pass.h>
@@ -216,6 +217,15 @@ namespace sable::mpm
                        const double                   time_step,
                        const unsigned int             n_owned_nodes);
 
+    /// With 'Round body moments = kept', each round body's rotation that
+    /// carries the moment the transfer to its points loses (for the
+    /// grid-to-particle transfer after the momentum update); else nullptr.
+    const RoundBodyMoments<dim> *
+    kept_moments() const
+    {
+      return keep_moments ? &moments : nullptr;
+    }
+
     /// The record of @p body at @p node if @p node is a contact node, else
     /// nullptr: a particle then reads the single field.
     const Record *
@@ -397,6 +407,10 @@ namespace sable::mpm
     /// along their line of centres ('Round pair normals'), or the planes
     /// are fitted at the nodes where only round bodies meet
     bool                    centre_lines    = false;
+    /// 'Round body moments = kept' in a scene with a round body (not on a
+    /// periodic grid)
+    bool                    keep_moments = false;
+    RoundBodyMoments<dim>   moments;
     bool                    fit_round_pairs = false;
     std::vector<bool>       round_body;
     BodyFields<dim>         fields;
