@@ -26,31 +26,33 @@ namespace sable::mpm
                                        const std::vector<bool> & round_bodies,
                                        const MPI_Comm            communicator)
   {
-    round             = round_bodies;
+    round                = round_bodies;
     const unsigned int n = round.size();
     // the centres first, then the second moments about them: about the
     // origin the moments of a small grain far from it would cancel
+    const auto add_mass = [](const auto &props, const auto &x, double *sum) {
+      const double mass = props[ParticleLayout<dim>::mass];
+      for (unsigned int d = 0; d < dim; ++d)
+        sum[d] += mass * x[d];
+      sum[dim] += mass;
+    };
     const std::vector<double> mass_sums =
-      sum_per_body<dim>(cells, round, dim + 1, communicator, [](const auto &props, const auto &x, double *sum) {
-        const double mass = props[ParticleLayout<dim>::mass];
-        for (unsigned int d = 0; d < dim; ++d)
-          sum[d] += mass * x[d];
-        sum[dim] += mass;
-      });
+      sum_per_body<dim>(cells, round, dim + 1, communicator, add_mass);
     centres.assign(n, Point<dim>());
     for (unsigned int b = 0; b < n; ++b)
       if (mass_sums[b * (dim + 1) + dim] > 0)
         for (unsigned int d = 0; d < dim; ++d)
           centres[b][d] = mass_sums[b * (dim + 1) + d] / mass_sums[b * (dim + 1) + dim];
-    const std::vector<double> second_moments = sum_per_body<dim>(
-      cells, round, dim * dim, communicator, [&](const auto &props, const auto &x, double *sum) {
-        const double mass = props[ParticleLayout<dim>::mass];
-        const unsigned int body = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
-        const Tensor<1, dim> r  = x - centres[body];
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = 0; j < dim; ++j)
-            sum[i * dim + j] += mass * r[i] * r[j];
-      });
+    const auto add_second_moment = [&](const auto &props, const auto &x, double *sum) {
+      const double         mass = props[ParticleLayout<dim>::mass];
+      const unsigned int   body = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
+      const Tensor<1, dim> r    = x - centres[body];
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          sum[i * dim + j] += mass * r[i] * r[j];
+    };
+    const std::vector<double> second_moments =
+      sum_per_body<dim>(cells, round, dim * dim, communicator, add_second_moment);
     inverse_inertia.assign(n, Tensor<2, 3>());
     for (unsigned int b = 0; b < n; ++b)
       {
