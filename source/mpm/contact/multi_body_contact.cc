@@ -300,9 +300,9 @@ namespace sable::mpm
                    parameters.round_pair_normals ==
                      ContactParameters::RoundPairNormals::line_of_centres;
     fit_round_pairs = round_pairs && !centre_lines;
-    keep_moments    = parameters.round_body_moments ==
-                     ContactParameters::RoundBodyMoments::kept &&
-                   !periodic_grid && std::count(round_body.begin(), round_body.end(), true) > 0;
+    keep_moments    = !periodic_grid &&
+                   parameters.round_body_moments == ContactParameters::RoundBodyMoments::kept &&
+                   std::count(round_body.begin(), round_body.end(), true) > 0;
     with_regression = with_regression || fit_round_pairs;
   }
 
@@ -311,22 +311,7 @@ namespace sable::mpm
   MultiBodyContact<dim>::update_body_centres(const ParticleCells<dim> &cells,
                                              const MPI_Comm            communicator)
   {
-    // per round body: sum m x and sum m over its points on all ranks
-    const unsigned int        n_entries = dim + 1;
-    const auto add_point = [](const auto &props, const auto &x, double *sum) {
-      const double mass = props[ParticleLayout<dim>::mass];
-      for (unsigned int d = 0; d < dim; ++d)
-        sum[d] += mass * x[d];
-      sum[dim] += mass;
-    };
-    const std::vector<double> sums =
-      sum_per_body<dim>(cells, round_body, n_entries, communicator, add_point);
-    std::vector<Point<dim>> centres(n_bodies);
-    for (unsigned int b = 0; b < n_bodies; ++b)
-      if (sums[b * n_entries + dim] > 0)
-        for (unsigned int d = 0; d < dim; ++d)
-          centres[b][d] = sums[b * n_entries + d] / sums[b * n_entries + dim];
-    model.set_body_centres(centres);
+    model.set_body_centres(centres_of_mass(cells, round_body, communicator));
   }
 
   template <int dim>

@@ -30,19 +30,7 @@ namespace sable::mpm
     const unsigned int n = round.size();
     // the centres first, then the second moments about them: about the
     // origin the moments of a small grain far from it would cancel
-    const auto add_mass = [](const auto &props, const auto &x, double *sum) {
-      const double mass = props[ParticleLayout<dim>::mass];
-      for (unsigned int d = 0; d < dim; ++d)
-        sum[d] += mass * x[d];
-      sum[dim] += mass;
-    };
-    const std::vector<double> mass_sums =
-      sum_per_body<dim>(cells, round, dim + 1, communicator, add_mass);
-    centres.assign(n, Point<dim>());
-    for (unsigned int b = 0; b < n; ++b)
-      if (mass_sums[b * (dim + 1) + dim] > 0)
-        for (unsigned int d = 0; d < dim; ++d)
-          centres[b][d] = mass_sums[b * (dim + 1) + d] / mass_sums[b * (dim + 1) + dim];
+    centres = centres_of_mass(cells, round, communicator);
     const auto add_second_moment = [&](const auto &props, const auto &x, double *sum) {
       const double         mass = props[ParticleLayout<dim>::mass];
       const unsigned int   body = static_cast<unsigned int>(props[ParticleLayout<dim>::body]);
