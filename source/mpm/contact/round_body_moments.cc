@@ -89,13 +89,13 @@ namespace sable::mpm
             }
       }
     Utilities::MPI::sum(sums, communicator, sums);
-    moments.assign(n, Tensor<1, 3>());
     spin_changes.assign(n, Tensor<1, 3>());
     for (unsigned int b = 0; b < n; ++b)
       {
+        Tensor<1, 3> moment;
         for (unsigned int d = 0; d < 3; ++d)
-          moments[b][d] = sums[3 * b + d];
-        spin_changes[b] = inverse_inertia[b] * moments[b];
+          moment[d] = sums[3 * b + d];
+        spin_changes[b] = inverse_inertia[b] * moment;
       }
   }
 

@@ -76,21 +76,12 @@ namespace sable::mpm
       return v;
     }
 
-    /// The moment about each body's centre that the last collect() gave
-    /// it (for tests and output).
-    const std::vector<Tensor<1, 3>> &
-    get_moments() const
-    {
-      return moments;
-    }
-
   private:
     std::vector<bool>         round;
     std::vector<Point<dim>>   centres;
     /// the inverse of each round body's moment of inertia about its centre
     /// (in 2D only [2][2], about the axis normal to the plane)
     std::vector<Tensor<2, 3>> inverse_inertia;
-    std::vector<Tensor<1, 3>> moments;
     std::vector<Tensor<1, 3>> spin_changes;
   };
 } // namespace sable::mpm
